@@ -1,0 +1,26 @@
+#pragma once
+/// \file
+/// Atomic file writes (ARCHITECTURE.md §2): the content goes to a temporary file in the same
+/// folder, which is renamed over the target only when it is complete. A crash, a bad input or
+/// an exception never leaves a half-written file or truncates an existing one.
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+namespace fvx {
+
+/// Calls `write` with a stream onto a temporary file beside `path`, then renames it onto
+/// `path`. If `write` throws or the stream fails, the temporary is removed, `path` is left as
+/// it was, and a FileError (or the original exception) propagates.
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+/// Same, for writers that insist on a file name (e.g. PCL, OpenCV): `write` receives the
+/// temporary path and must create that file. `extension` is kept on the temporary so that
+/// writers that dispatch on it work.
+void write_path_atomically(const std::string& path,
+                           const std::function<void(const std::string& temp_path)>& write);
+
+/// Throws FileError if `path` does not exist or is not a readable regular file.
+void require_readable_file(const std::string& path);
+
+}  // namespace fvx

@@ -1,0 +1,29 @@
+#pragma once
+/// \file
+/// Rigid transforms. Names carry frames: `T_world_sensor` maps sensor-frame points into the
+/// world, `p_world = T_world_sensor * p_sensor`, and chains cancel
+/// (`T_world_base * T_base_sensor`). Camera optical frame: z forward, x right, y down.
+#include <Eigen/Geometry>
+#include <string>
+
+namespace fvx {
+
+/// Builds `T_a_b` from a translation and a quaternion given scalar-last (x, y, z, w), the
+/// order of TUM, slambook and ROS files. The quaternion is normalised; q and -q give the same
+/// rotation. Throws UsageError naming `what` if the quaternion is zero or not finite.
+Eigen::Isometry3d pose_from_translation_quaternion(const Eigen::Vector3d& t, double qx, double qy,
+                                                   double qz, double qw, const std::string& what);
+
+/// Parses "x,y,z,qx,qy,qz,qw" (metres, scalar-last quaternion) as given to `--pose`.
+Eigen::Isometry3d parse_pose(const std::string& text, const std::string& what);
+
+/// Angle of the rotation part in degrees, in [0, 180].
+double rotation_angle_deg(const Eigen::Isometry3d& T);
+
+/// True when `T` has an orthonormal rotation (tolerance 1e-6) and a finite translation.
+bool is_rigid(const Eigen::Isometry3d& T);
+
+/// The fvx release, e.g. "0.1.0".
+const char* version();
+
+}  // namespace fvx

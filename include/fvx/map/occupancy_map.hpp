@@ -1,0 +1,153 @@
+#pragma once
+/// \file
+/// Stage `map` (paper §IV step 3): a probabilistic occupancy map. The facade hides
+/// octomap::OcTree (the file format and current store) so that the integration path can be
+/// replaced without touching callers. `integrate()` returns the change set that the
+/// incremental frontier and void sets consume.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fvx::map {
+
+/// Tri-state cell state: a cell without data is Unknown; otherwise its occupancy probability
+/// against the threshold decides Free or Occupied.
+enum class VoxelState : std::uint8_t { Unknown, Free, Occupied };
+const char* to_string(VoxelState state);
+
+/// Integer cell address at the finest level (OctoMap's key space: 16 bits per axis, the
+/// origin at key 32768, cell i covering [ (i − 32768)·R, (i − 32767)·R )).
+struct VoxelKey {
+  std::uint16_t x = 0, y = 0, z = 0;
+  friend bool operator==(const VoxelKey& a, const VoxelKey& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  }
+  friend bool operator!=(const VoxelKey& a, const VoxelKey& b) { return !(a == b); }
+  /// Lexicographic on (z, y, x): the order of change sets and reports.
+  friend bool operator<(const VoxelKey& a, const VoxelKey& b) {
+    if (a.z != b.z) return a.z < b.z;
+    if (a.y != b.y) return a.y < b.y;
+    return a.x < b.x;
+  }
+};
+
+/// One cell whose state an integration changed.
+struct Change {
+  VoxelKey key;
+  VoxelState before = VoxelState::Unknown;
+  VoxelState after = VoxelState::Unknown;
+};
+
+/// Result of integrate(): the change set (sorted by key, only cells whose state changed) and
+/// counts of what the scan did.
+struct Integration {
+  std::vector<Change> changes;
+  std::size_t points = 0;              ///< endpoints offered
+  std::size_t points_beyond_range = 0; ///< rays cut at max range (their end is not marked)
+  std::size_t points_out_of_map = 0;   ///< endpoints or origin outside the key space
+  std::size_t free_updates = 0;        ///< distinct cells updated as free (miss)
+  std::size_t occupied_updates = 0;    ///< distinct cells updated as occupied (hit)
+};
+
+/// How a ray cast ended.
+enum class RayOutcome {
+  Hit,          ///< reached an occupied cell
+  Unknown,      ///< reached an unknown cell (only when unknown cells stop the ray)
+  MaxRange,     ///< travelled the full range through free (or passable unknown) cells
+  OutOfBounds,  ///< left the map's key space, or started outside it
+};
+const char* to_string(RayOutcome outcome);
+
+struct RayQuery {
+  Eigen::Vector3d origin_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction_world = Eigen::Vector3d::UnitX();  ///< need not be unit length
+  double max_range_m = std::numeric_limits<double>::infinity();
+  bool pass_unknown = false;  ///< when true, unknown cells do not stop the ray
+};
+
+struct RayCast {
+  RayOutcome outcome = RayOutcome::OutOfBounds;
+  VoxelKey key;          ///< the cell where the ray stopped (Hit, Unknown)
+  double distance_m = 0; ///< distance from the origin to where the ray stopped
+};
+
+/// OctoMap's sensor model, in probabilities (defaults are OctoMap's).
+struct SensorModel {
+  double prob_hit = 0.7;              ///< occupancy after one hit
+  double prob_miss = 0.4;             ///< occupancy after one miss
+  double clamp_min = 0.1192;          ///< lower clamping bound
+  double clamp_max = 0.971;           ///< upper clamping bound
+  double occupancy_threshold = 0.5;   ///< at or above: Occupied
+  std::vector<std::string> validate() const;
+};
+
+/// Summary of a map.
+struct Stats {
+  double resolution_m = 0;
+  std::size_t nodes = 0;           ///< octree nodes, inner and leaves
+  std::size_t free_leaves = 0;     ///< leaves (pruned nodes count once)
+  std::size_t occupied_leaves = 0;
+  double free_volume_m3 = 0;
+  double occupied_volume_m3 = 0;
+  bool empty = true;
+  Eigen::Vector3d known_min_m = Eigen::Vector3d::Zero();  ///< bounding box of known cells
+  Eigen::Vector3d known_max_m = Eigen::Vector3d::Zero();
+};
+
+class OccupancyMap {
+ public:
+  /// An empty map with cells of edge `resolution_m` (> 0).
+  explicit OccupancyMap(double resolution_m, const SensorModel& model = {});
+  ~OccupancyMap();
+  OccupancyMap(OccupancyMap&&) noexcept;
+  OccupancyMap& operator=(OccupancyMap&&) noexcept;
+  OccupancyMap(const OccupancyMap&) = delete;
+  OccupancyMap& operator=(const OccupancyMap&) = delete;
+
+  /// Reads `.bt` (occupancy only) or `.ot` (full tree; ColorOcTree and OcTreeStamped are read
+  /// as occupancy). Throws FileError for a missing, truncated or foreign file.
+  static OccupancyMap load(const std::string& path);
+  /// Writes `.bt` (max-likelihood, as OctoMap's writeBinary) or `.ot` (log-odds), chosen by
+  /// extension, atomically: an existing file is replaced only by a complete one.
+  void save(const std::string& path) const;
+
+  double resolution_m() const;
+  SensorModel sensor_model() const;
+
+  /// The key of the cell containing `p_world`; empty outside the key space.
+  std::optional<VoxelKey> key_of(const Eigen::Vector3d& p_world) const;
+  /// The centre of a cell, metres.
+  Eigen::Vector3d center_of(const VoxelKey& key) const;
+  VoxelState state(const VoxelKey& key) const;
+  /// Occupancy probability of a cell, or empty when unknown.
+  std::optional<double> probability(const VoxelKey& key) const;
+
+  /// Integrates one scan (OctoMap's insertPointCloud semantics, exact): every ray from
+  /// `origin_world` to an endpoint marks the cells it crosses free and the endpoint's cell
+  /// occupied (occupied wins over free within one scan; each cell is updated once per scan).
+  /// Endpoints farther than `max_range_m` (infinity: no limit) cut the ray at that range and
+  /// mark nothing occupied.
+  Integration integrate(const std::vector<Eigen::Vector3f>& points_world,
+                        const Eigen::Vector3f& origin_world,
+                        double max_range_m = std::numeric_limits<double>::infinity());
+
+  /// Walks the cells along a ray (Amanatides–Woo) and reports how it ended.
+  RayCast cast_ray(const RayQuery& query) const;
+
+  /// Centres of all occupied cells at the finest level (pruned leaves are expanded), in key
+  /// order. The accumulated cloud that registration aligns new scans to.
+  std::vector<Eigen::Vector3f> occupied_centers() const;
+
+  Stats stats() const;
+
+  struct Impl;  ///< private; defined in src/map/tree.hpp
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fvx::map

@@ -1,0 +1,27 @@
+#pragma once
+// The command table (Ninja-style): {spec, run} in pipeline order. `fvx --help` prints it.
+#include <vector>
+
+#include "options.hpp"
+
+namespace fvx::cli {
+
+struct Command {
+  const CommandSpec& spec;
+  int (*run)(int argc, char** argv);  ///< argv[0] is "fvx <name>"; returns the exit status
+};
+
+/// Every command, in the order of the pipeline (ARCHITECTURE.md §1).
+const std::vector<Command>& commands();
+
+/// The whole program below main(): top-level options, `help`, dispatch. Throws fvx::Error.
+int run(int argc, char** argv);
+
+/// `fvx --help`.
+std::string top_level_help();
+
+// Commands (one cmd_<name>.cpp each).
+extern const CommandSpec kIntegrateSpec;
+int run_integrate(int argc, char** argv);
+
+}  // namespace fvx::cli

@@ -1,0 +1,63 @@
+#include "report.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/pose.hpp"
+
+namespace fvx::cli {
+
+constexpr int kSchemaVersion = 1;
+
+Json new_report(const std::string& command) {
+  Json report;
+  report["schema_version"] = kSchemaVersion;
+  report["fvx_version"] = version();
+  report["command"] = command;
+  report["config"] = Json::object();
+  report["inputs"] = Json::object();
+  report["results"] = Json::object();
+  report["warnings"] = Json::array();
+  return report;
+}
+
+void write_report(const Json& report, const std::string& path) {
+  const std::string text = report.dump(2) + "\n";
+  if (path.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+Json pose_json(const Eigen::Isometry3d& T) {
+  Eigen::Quaterniond q(T.rotation());
+  if (q.w() < 0) q.coeffs() *= -1.0;  // one sign for one rotation
+  return {{"position_m", vec_json(T.translation())},
+          {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
+}
+
+Json vec_json(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+Progress::Progress(bool forced) : tty_(::isatty(STDERR_FILENO) != 0) { enabled_ = forced || tty_; }
+
+void Progress::update(const std::string& line) {
+  if (!enabled_) return;
+  if (tty_)
+    std::fprintf(stderr, "\r\033[K%s", line.c_str());
+  else
+    std::fprintf(stderr, "%s\n", line.c_str());
+  std::fflush(stderr);
+  shown_ = true;
+}
+
+void Progress::finish() {
+  if (enabled_ && tty_ && shown_) std::fprintf(stderr, "\n");
+  shown_ = false;
+}
+
+}  // namespace fvx::cli

@@ -1,0 +1,81 @@
+#include "fvx/core/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "fvx/core/error.hpp"
+
+namespace fvx {
+namespace fs = std::filesystem;
+namespace {
+
+/// A temporary name beside `path` that keeps its extension: "dir/.name.tmp-<pid>-<n>.ext".
+std::string temporary_path_for(const std::string& path) {
+  static unsigned counter = 0;
+  const fs::path target(path);
+  const std::string stem = target.stem().string();
+  const std::string ext = target.extension().string();
+  const std::string name = "." + stem + ".tmp-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(counter++) + ext;
+  return (target.parent_path() / name).string();
+}
+
+void check_parent_folder(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw FileError(path, "cannot write: folder '" + parent.string() + "' does not exist");
+  if (fs::is_directory(path, ec)) throw FileError(path, "cannot write: it is a folder");
+}
+
+void commit(const std::string& temp, const std::string& path) {
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temp.c_str());
+    throw FileError(path, "cannot write: " + reason);
+  }
+}
+
+}  // namespace
+
+void write_path_atomically(const std::string& path,
+                           const std::function<void(const std::string& temp_path)>& write) {
+  check_parent_folder(path);
+  const std::string temp = temporary_path_for(path);
+  try {
+    write(temp);
+  } catch (...) {
+    std::remove(temp.c_str());
+    throw;
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(temp, ec)) throw FileError(path, "cannot write: the writer produced no file");
+  commit(temp, path);
+}
+
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write) {
+  write_path_atomically(path, [&](const std::string& temp) {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw FileError(path, std::string("cannot write: ") + std::strerror(errno));
+    write(out);
+    out.flush();
+    if (!out) throw FileError(path, "cannot write: write failed (disk full?)");
+  });
+}
+
+void require_readable_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
+}
+
+}  // namespace fvx

@@ -1,0 +1,108 @@
+#include "fvx/io/cloud_file.hpp"
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::io {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// PCL reports problems on stderr itself; fvx reports them once, through its own errors.
+void silence_pcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+
+bool has_field(const pcl::PCLPointCloud2& cloud, const std::string& name) {
+  return std::any_of(cloud.fields.begin(), cloud.fields.end(),
+                     [&](const pcl::PCLPointField& f) { return f.name == name; });
+}
+
+}  // namespace
+
+CloudFile read_cloud(const std::string& path) {
+  require_readable_file(path);
+  silence_pcl();
+  const std::string ext = lower_extension(path);
+  pcl::PCLPointCloud2 blob;
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  int result = -1;
+  try {
+    if (ext == ".pcd") {
+      int version = 0, data_type = 0;
+      unsigned data_index = 0;
+      pcl::PCDReader reader;
+      // PCL 1.13's read() crashes on a file without a header; check the header first.
+      if (reader.readHeader(path, blob, origin, orientation, version, data_type, data_index) < 0 ||
+          blob.fields.empty())
+        throw FileError(path, "corrupt PCD header (no FIELDS, or a malformed line)");
+      result = reader.read(path, blob, origin, orientation, version);
+    } else if (ext == ".ply") {
+      int version = 0;
+      pcl::PLYReader reader;
+      result = reader.read(path, blob, origin, orientation, version);
+    } else {
+      throw FileError(path, "unknown cloud format '" + ext + "'; expected .pcd or .ply");
+    }
+  } catch (const pcl::PCLException& e) {
+    throw FileError(path, std::string("corrupt point cloud: ") + e.what());
+  }
+  if (result < 0) throw FileError(path, "corrupt or unreadable point cloud (header or data)");
+  if (!has_field(blob, "x") || !has_field(blob, "y") || !has_field(blob, "z"))
+    throw FileError(path, "the cloud has no x, y, z fields");
+  const std::size_t expected = std::size_t(blob.width) * blob.height;
+  if (blob.data.size() < expected * blob.point_step)
+    throw FileError(path, "truncated point data: header promises " + std::to_string(expected) +
+                              " points");
+
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  pcl::fromPCLPointCloud2(blob, xyz);
+  CloudFile file;
+  file.width = static_cast<int>(xyz.width);
+  file.height = static_cast<int>(xyz.height);
+  file.points.reserve(xyz.size());
+  for (const auto& p : xyz.points) file.points.emplace_back(p.x, p.y, p.z);
+
+  const Eigen::Quaterniond q = orientation.cast<double>();
+  if (!origin.head<3>().allFinite() || !q.coeffs().allFinite() || q.norm() < 1e-9)
+    throw FileError(path, "VIEWPOINT is not a finite pose");
+  file.viewpoint = Eigen::Isometry3d(q.normalized());
+  file.viewpoint.pretranslate(origin.head<3>().cast<double>());
+  return file;
+}
+
+bool is_legacy_openni_viewpoint(const Eigen::Isometry3d& T) {
+  const Eigen::Matrix3d flip_x = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  return T.translation().norm() < 1e-9 && (T.linear() - flip_x).cwiseAbs().maxCoeff() < 1e-6;
+}
+
+void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
+               const Eigen::Isometry3d& T_world_sensor) {
+  silence_pcl();
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  cloud.reserve(points.size());
+  for (const auto& p : points) cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  cloud.width = static_cast<std::uint32_t>(points.size());
+  cloud.height = 1;
+  const Eigen::Vector3d t = T_world_sensor.translation();
+  cloud.sensor_origin_ = Eigen::Vector4f(float(t.x()), float(t.y()), float(t.z()), 0.0f);
+  cloud.sensor_orientation_ = Eigen::Quaterniond(T_world_sensor.rotation()).cast<float>();
+  write_path_atomically(path, [&](const std::string& temp) {
+    if (pcl::io::savePCDFileBinary(temp, cloud) != 0) throw FileError(path, "cannot write PCD");
+  });
+}
+
+}  // namespace fvx::io

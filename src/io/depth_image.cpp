@@ -1,0 +1,45 @@
+#include "fvx/io/depth_image.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::io {
+
+bool is_depth_image_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".png" || ext == ".pgm" || ext == ".tif" || ext == ".tiff";
+}
+
+DepthImage read_depth_image(const std::string& path) {
+  require_readable_file(path);
+  cv::Mat image;
+  try {
+    // IMREAD_ANYDEPTH keeps 16 bits; PGM is big-endian on disk and OpenCV swaps it.
+    image = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
+  } catch (const cv::Exception& e) {
+    throw FileError(path, std::string("unreadable image: ") + e.what());
+  }
+  if (image.empty()) throw FileError(path, "not a readable PNG, PGM or TIFF image");
+  if (image.channels() != 1)
+    throw FileError(path, "has " + std::to_string(image.channels()) +
+                              " channels; a depth image has one (is this the colour image?)");
+  if (image.depth() != CV_16U)
+    throw FileError(path, "is not a 16-bit image; depth must be stored as 16-bit integers");
+  DepthImage depth;
+  depth.width = image.cols;
+  depth.height = image.rows;
+  depth.raw.resize(std::size_t(image.rows) * image.cols);
+  for (int r = 0; r < image.rows; ++r) {
+    const auto* row = image.ptr<std::uint16_t>(r);
+    std::copy(row, row + image.cols, depth.raw.begin() + std::ptrdiff_t(r) * image.cols);
+  }
+  return depth;
+}
+
+}  // namespace fvx::io

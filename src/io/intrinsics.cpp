@@ -1,0 +1,78 @@
+#include "fvx/io/intrinsics.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::io {
+
+std::vector<std::string> Intrinsics::validate() const {
+  std::vector<std::string> problems;
+  auto focal = [&](double f, const char* name) {
+    if (!std::isfinite(f) || std::abs(f) < 1e-6)
+      problems.push_back(std::string(name) + " must be a finite, non-zero focal length in pixels");
+  };
+  focal(fx, "fx");
+  focal(fy, "fy");
+  if (!std::isfinite(cx) || !std::isfinite(cy)) problems.push_back("cx and cy must be finite");
+  if (!std::isfinite(depth_scale) || depth_scale <= 0.0)
+    problems.push_back("depth_scale must be > 0 (raw units per metre, e.g. 1000 or 5000)");
+  if (width <= 0 || height <= 0) problems.push_back("width and height must be > 0 pixels");
+  return problems;
+}
+
+namespace {
+
+double number(const nlohmann::json& j, const char* key, const std::string& path) {
+  if (!j.contains(key)) throw FileError(path, std::string("missing key '") + key + "'");
+  if (!j.at(key).is_number()) throw FileError(path, std::string("'") + key + "' must be a number");
+  return j.at(key).get<double>();
+}
+
+}  // namespace
+
+Intrinsics read_intrinsics(const std::string& path) {
+  require_readable_file(path);
+  std::ifstream in(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw FileError(path, "expected a JSON object");
+
+  Intrinsics k;
+  if (j.contains("intrinsic_matrix")) {  // Open3D layout, column-major
+    const std::set<std::string> known = {"width", "height", "intrinsic_matrix"};
+    for (const auto& item : j.items())
+      if (!known.count(item.key())) throw FileError(path, "unknown key '" + item.key() + "'");
+    const auto& m = j.at("intrinsic_matrix");
+    if (!m.is_array() || m.size() != 9 || !std::all_of(m.begin(), m.end(), [](const auto& v) { return v.is_number(); }))
+      throw FileError(path, "'intrinsic_matrix' must be 9 numbers (column-major 3x3)");
+    k.fx = m[0].get<double>();
+    k.fy = m[4].get<double>();
+    k.cx = m[6].get<double>();
+    k.cy = m[7].get<double>();
+  } else {
+    const std::set<std::string> known = {"fx", "fy", "cx", "cy", "depth_scale", "width", "height"};
+    for (const auto& item : j.items())
+      if (!known.count(item.key())) throw FileError(path, "unknown key '" + item.key() + "'");
+    k.fx = number(j, "fx", path);
+    k.fy = number(j, "fy", path);
+    k.cx = number(j, "cx", path);
+    k.cy = number(j, "cy", path);
+    if (j.contains("depth_scale")) k.depth_scale = number(j, "depth_scale", path);
+  }
+  if (j.contains("width")) k.width = static_cast<int>(number(j, "width", path));
+  if (j.contains("height")) k.height = static_cast<int>(number(j, "height", path));
+  const auto problems = k.validate();
+  if (!problems.empty()) throw FileError(path, problems.front());
+  return k;
+}
+
+}  // namespace fvx::io

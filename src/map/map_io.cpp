@@ -1,0 +1,139 @@
+// Reading and writing maps as OctoMap files (.bt, .ot).
+#include <octomap/AbstractOcTree.h>
+#include <octomap/ColorOcTree.h>
+#include <octomap/OcTreeStamped.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+#include "tree.hpp"
+
+namespace fvx::map {
+namespace {
+
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+/// OctoMap reports problems (and chatter such as " done.") with fprintf(stderr) and
+/// std::cerr. While it reads or writes, file descriptor 2 goes to a temporary file; what it
+/// said becomes part of fvx's one-line error instead of stray lines on stderr.
+class CaptureStderr {
+ public:
+  CaptureStderr() {
+    std::fflush(stderr);
+    std::cerr.flush();
+    file_ = std::tmpfile();
+    saved_fd_ = file_ ? ::dup(STDERR_FILENO) : -1;
+    if (saved_fd_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
+  }
+  ~CaptureStderr() { restore(); }
+  CaptureStderr(const CaptureStderr&) = delete;
+  CaptureStderr& operator=(const CaptureStderr&) = delete;
+
+  /// What OctoMap printed, as " (OctoMap: ...)" on one line, or "".
+  std::string text() {
+    restore();
+    if (!file_) return "";
+    std::string t;
+    std::rewind(file_);
+    for (int c; (c = std::fgetc(file_)) != EOF;) t += c == '\n' ? ' ' : char(c);
+    while (!t.empty() && t.back() == ' ') t.pop_back();
+    while (!t.empty() && t.front() == ' ') t.erase(0, 1);
+    return t.empty() ? "" : " (OctoMap: " + t + ")";
+  }
+
+ private:
+  void restore() {
+    if (saved_fd_ < 0) return;
+    std::fflush(stderr);
+    std::cerr.flush();
+    ::dup2(saved_fd_, STDERR_FILENO);
+    ::close(saved_fd_);
+    saved_fd_ = -1;
+  }
+  std::FILE* file_ = nullptr;
+  int saved_fd_ = -1;
+};
+
+void require_map_extension(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".bt" && ext != ".ot")
+    throw FileError(path, "unknown map format '" + ext + "'; expected .bt or .ot");
+}
+
+}  // namespace
+
+OccupancyMap OccupancyMap::load(const std::string& path) {
+  require_map_extension(path);
+  require_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  CaptureStderr capture;
+
+  if (extension_of(path) == ".bt") {
+    std::string first_line;
+    std::getline(in, first_line);
+    in.seekg(0);
+    if (first_line.rfind("# Octomap OcTree binary file", 0) != 0)
+      throw FileError(path, "not an OctoMap binary (.bt) file" + capture.text());
+    Tree probe(0.1);
+    // readBinary needs the resolution from the header; read into a probe tree, then move.
+    if (!probe.readBinary(in) || in.bad() || (in.fail() && !in.eof()))
+      throw FileError(path, "truncated or corrupt .bt file" + capture.text());
+    if (in.fail()) throw FileError(path, "truncated .bt file" + capture.text());
+    OccupancyMap map(probe.getResolution());
+    map.impl_->tree.swapContent(probe);
+    return map;
+  }
+
+  std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(in));
+  if (!tree) throw FileError(path, "not a readable OctoMap .ot file" + capture.text());
+  if (in.fail()) throw FileError(path, "truncated .ot file" + capture.text());
+  OccupancyMap map(tree->getResolution());
+  auto& mine = map.impl_->tree;
+  if (auto* plain = dynamic_cast<octomap::OcTree*>(tree.get())) {
+    mine.copy_from(*plain);
+    mine.setProbHit(plain->getProbHit());
+    mine.setProbMiss(plain->getProbMiss());
+    mine.setClampingThresMin(plain->getClampingThresMin());
+    mine.setClampingThresMax(plain->getClampingThresMax());
+    mine.setOccupancyThres(plain->getOccupancyThres());
+  } else if (auto* color = dynamic_cast<octomap::ColorOcTree*>(tree.get())) {
+    mine.copy_from(*color);
+  } else if (auto* stamped = dynamic_cast<octomap::OcTreeStamped*>(tree.get())) {
+    mine.copy_from(*stamped);
+  } else {
+    throw FileError(path, "holds an OctoMap '" + tree->getTreeType() +
+                              "', which is not an occupancy tree fvx can read");
+  }
+  return map;
+}
+
+void OccupancyMap::save(const std::string& path) const {
+  require_map_extension(path);
+  const bool binary = extension_of(path) == ".bt";
+  write_file_atomically(path, [&](std::ostream& out) {
+    CaptureStderr capture;
+    bool ok;
+    if (binary) {
+      // writeBinary thresholds and prunes the tree it writes; do that on a copy so the map
+      // keeps its probabilities.
+      octomap::OcTree copy(impl_->tree);
+      ok = copy.writeBinary(out);
+    } else {
+      ok = impl_->tree.write(out);
+    }
+    if (!ok || !out) throw FileError(path, "cannot write the map" + capture.text());
+  });
+}
+
+}  // namespace fvx::map

@@ -1,0 +1,47 @@
+#pragma once
+// Runs the fvx binary as a user would and captures exit status, stdout and stderr.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "test_support.hpp"
+
+namespace fvx::test {
+
+struct RunResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// `fvx <arguments>` in `dir`; arguments are passed through the shell as written.
+inline RunResult run_fvx(const TempDir& dir, const std::string& arguments) {
+  const std::string out = dir / ".stdout", err = dir / ".stderr";
+  const std::string command = "cd '" + dir.path().string() + "' && '" FVX_BINARY "' " + arguments +
+                              " > '" + out + "' 2> '" + err + "' < /dev/null";
+  const int raw = std::system(command.c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+inline std::size_t line_count(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+}  // namespace fvx::test

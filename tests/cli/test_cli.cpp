@@ -1,0 +1,181 @@
+// The binary's contract: exit codes, JSON on stdout, logs on stderr, bad input refused with a
+// one-line message and no damage to existing outputs.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "fvx/io/cloud_file.hpp"
+#include "fvx/map/occupancy_map.hpp"
+
+namespace fvx::test {
+namespace {
+
+using nlohmann::json;
+
+/// A wall 2 m in front of the sensor, seen from `x_m` to the side (PCD with VIEWPOINT).
+void write_wall_scan(const std::string& path, double x_m) {
+  std::vector<Eigen::Vector3f> points;
+  for (int i = -20; i <= 20; ++i)
+    for (int j = -15; j <= 15; ++j) points.emplace_back(0.05f * i, 0.05f * j, 2.0f);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() << x_m, 0, 0;
+  io::write_pcd(path, points, T);
+}
+
+TEST(Cli, VersionHelpAndUnknownCommands) {
+  const TempDir dir;
+  RunResult r = run_fvx(dir, "--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("fvx ", 0), 0u);
+  r = run_fvx(dir, "--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("integrate"), std::string::npos);
+  r = run_fvx(dir, "help integrate");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--trajectory"), std::string::npos);
+  EXPECT_EQ(run_fvx(dir, "integrate --help").out, r.out);
+
+  r = run_fvx(dir, "integrat -o x.bt a.pcd");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("did you mean 'integrate'"), std::string::npos) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u);
+  EXPECT_EQ(run_fvx(dir, "").status, 2);
+  EXPECT_EQ(run_fvx(dir, "--bogus").status, 2);
+  r = run_fvx(dir, "integrate --resolutoin 0.1 -o x.bt a.pcd");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("did you mean --resolution?"), std::string::npos) << r.err;
+}
+
+TEST(Cli, IntegrateWritesAMapAndAJsonReport) {
+  const TempDir dir;
+  write_wall_scan(dir / "a.pcd", 0.0);
+  write_wall_scan(dir / "b.pcd", 0.3);
+  const RunResult r = run_fvx(dir, "integrate -o map.bt --resolution 0.05 a.pcd b.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // no progress when stderr is not a terminal
+  const json report = json::parse(r.out);
+  EXPECT_EQ(report["schema_version"], 1);
+  EXPECT_EQ(report["command"], "integrate");
+  EXPECT_TRUE(report["fvx_version"].is_string());
+  EXPECT_EQ(report["config"]["resolution_m"], 0.05);
+  EXPECT_EQ(report["inputs"]["scans"].size(), 2u);
+  const json& scans = report["results"]["scans"];
+  ASSERT_EQ(scans.size(), 2u);
+  EXPECT_EQ(scans[0]["pose_source"], "viewpoint");
+  EXPECT_EQ(scans[0]["registration"]["attempted"], false);
+  EXPECT_EQ(scans[1]["registration"]["attempted"], true);
+  EXPECT_EQ(scans[1]["registration"]["converged"], true);
+  EXPECT_TRUE(scans[1]["registration"]["fitness_rmse_m"].is_number());
+  EXPECT_GT(scans[0]["integration"]["changed_cells"].get<int>(), 1000);
+  EXPECT_FALSE(scans[0].contains("timing_s"));
+  EXPECT_GT(report["results"]["map"]["occupied_leaves"].get<int>(), 0);
+  EXPECT_TRUE(report["warnings"].empty());
+
+  const map::OccupancyMap m = map::OccupancyMap::load(dir / "map.bt");
+  EXPECT_EQ(m.state(*m.key_of({0.0, 0.0, 2.01})), map::VoxelState::Occupied);
+  EXPECT_EQ(m.state(*m.key_of({0.0, 0.0, 1.0})), map::VoxelState::Free);
+  EXPECT_EQ(m.state(*m.key_of({0.0, 0.0, 2.5})), map::VoxelState::Unknown);
+}
+
+TEST(Cli, ReportsAreDeterministicAndTimingOnlyOnRequest) {
+  const TempDir dir;
+  write_wall_scan(dir / "a.pcd", 0.0);
+  const RunResult one = run_fvx(dir, "integrate -o m1.ot a.pcd");
+  const RunResult two = run_fvx(dir, "integrate -o m1.ot a.pcd");
+  ASSERT_EQ(one.status, 0);
+  EXPECT_EQ(one.out, two.out);
+  const RunResult timed = run_fvx(dir, "integrate -o m2.ot --timing a.pcd");
+  EXPECT_TRUE(json::parse(timed.out)["results"]["scans"][0]["timing_s"]["integration"].is_number());
+  const RunResult to_file = run_fvx(dir, "integrate -o m3.ot --report report.json a.pcd");
+  EXPECT_EQ(to_file.out, "");
+  EXPECT_EQ(json::parse(slurp(dir / "report.json"))["command"], "integrate");
+  const RunResult progress = run_fvx(dir, "integrate -o m4.ot --progress a.pcd");
+  EXPECT_NE(progress.err.find("scan 1/1"), std::string::npos);
+}
+
+TEST(Cli, UpdatingAMapRegistersTheNewScan) {
+  const TempDir dir;
+  write_wall_scan(dir / "a.pcd", 0.0);
+  write_wall_scan(dir / "b.pcd", 0.2);
+  ASSERT_EQ(run_fvx(dir, "integrate -o map.ot a.pcd").status, 0);
+  const RunResult r = run_fvx(dir, "integrate --map map.ot -o map2.ot --register b.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  EXPECT_EQ(report["inputs"]["map"], "map.ot");
+  EXPECT_EQ(report["results"]["scans"][0]["registration"]["converged"], true);
+  EXPECT_EQ(run_fvx(dir, "integrate --map map.ot --resolution 0.1 -o map3.ot b.pcd").status, 2);
+}
+
+struct BadInput {
+  const char* name;
+  const char* arguments;
+  int status;
+  const char* must_mention;
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, OneLineErrorAndTheExistingMapIsUntouched) {
+  const BadInput c = GetParam();
+  const TempDir dir;
+  write_wall_scan(dir / "good.pcd", 0.0);
+  ASSERT_EQ(run_fvx(dir, "integrate -o out.bt good.pcd").status, 0);
+  const std::string before = slurp(dir / "out.bt");
+  std::ofstream(dir / "empty.pcd") << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                      "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n";
+  std::ofstream(dir / "nan.pcd") << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                    "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n";
+  std::ofstream(dir / "corrupt.pcd") << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH two\n";
+  std::ofstream(dir / "text.ot") << "this is a text file\n";
+  std::ofstream(dir / "one-pose.txt") << "0 0 0 0 0 0 1\n";
+  const std::string map_bytes = slurp(dir / "out.bt");
+  std::ofstream(dir / "truncated.bt", std::ios::binary) << map_bytes.substr(0, map_bytes.size() / 2);
+
+  const RunResult r = run_fvx(dir, c.arguments);
+  EXPECT_EQ(r.status, c.status) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("fvx: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(c.must_mention), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(slurp(dir / "out.bt"), before);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    ::testing::Values(
+        BadInput{"missing", "integrate -o out.bt good.pcd missing.pcd", 1, "missing.pcd"},
+        BadInput{"empty", "integrate -o out.bt good.pcd empty.pcd", 1, "empty.pcd"},
+        BadInput{"all_nan", "integrate -o out.bt good.pcd nan.pcd", 1, "nan.pcd"},
+        BadInput{"corrupt_header", "integrate -o out.bt corrupt.pcd", 1, "corrupt.pcd"},
+        BadInput{"truncated_map", "integrate --map truncated.bt -o out.bt good.pcd", 1, "truncated.bt"},
+        BadInput{"text_as_ot", "integrate --map text.ot -o out.bt good.pcd", 1, "text.ot"},
+        BadInput{"non_numeric_resolution", "integrate --resolution fine -o out.bt good.pcd", 2, "--resolution"},
+        BadInput{"zero_resolution", "integrate --resolution 0 -o out.bt good.pcd", 2, "--resolution"},
+        BadInput{"few_poses", "integrate --trajectory one-pose.txt -o out.bt good.pcd good.pcd", 1, "one-pose.txt"},
+        BadInput{"no_output", "integrate good.pcd", 2, "--output"},
+        BadInput{"bad_output_ext", "integrate -o out.txt good.pcd", 2, "out.txt"},
+        BadInput{"image_without_intrinsics", "integrate -o out.bt frame.png", 2, "intrinsics"},
+        BadInput{"bad_pose", "integrate --pose 1,2,3 -o out.bt good.pcd", 2, "--pose"},
+        BadInput{"bad_method", "integrate --reg-method ndt -o out.bt good.pcd", 2, "--reg-method"}),
+    [](const auto& test_info) { return std::string(test_info.param.name); });
+
+TEST(CliRealData, SlambookWithTheRecipeReproducesTheReference) {
+  FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
+  FVX_REAL_DATA_OR_SKIP(reference, "octomap-maps/slambook_ch13/octomap.bt");
+  const TempDir dir;
+  std::string depth;
+  for (int i = 1; i <= 5; ++i) depth += " " + frames + "/depth/" + std::to_string(i) + ".pgm";
+  const RunResult r = run_fvx(dir, "integrate -o s.bt --resolution 0.05 --depth-max 7 --fx 518 --fy 519 "
+                                   "--cx 325.5 --cy 253.5 --depth-scale 1000 --no-register --trajectory " +
+                                       frames + "/pose.txt" + depth);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["inputs"]["pose_match"], "order");
+  EXPECT_EQ(slurp(dir / "s.bt"), slurp(reference));
+}
+
+}  // namespace
+}  // namespace fvx::test

@@ -1,0 +1,61 @@
+// The manual tells the truth: every option of every command is in its --help and its man
+// page, and fvx.1 names every command.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "cli_support.hpp"
+#include "command_table.hpp"
+
+namespace fvx::test {
+namespace {
+
+/// A man page with roff escapes removed ("\-\-max\-range" → "--max-range", fonts dropped).
+std::string man_page_text(const std::string& name) {
+  const char* source = std::getenv("FVX_SOURCE_DIR");
+  EXPECT_NE(source, nullptr) << "FVX_SOURCE_DIR is set by CTest";
+  std::string text = slurp(std::string(source ? source : ".") + "/man/" + name);
+  for (const char* font : {"\\fB", "\\fI", "\\fR", "\\fP"}) {
+    for (auto at = text.find(font); at != std::string::npos; at = text.find(font)) text.erase(at, 3);
+  }
+  for (auto at = text.find("\\-"); at != std::string::npos; at = text.find("\\-")) text.erase(at, 1);
+  return text;
+}
+
+TEST(Manual, EveryOptionIsInHelpAndManPage) {
+  for (const cli::Command& command : cli::commands()) {
+    const std::string page = man_page_text(std::string("fvx-") + command.spec.name + ".1");
+    ASSERT_FALSE(page.empty()) << "man/fvx-" << command.spec.name << ".1 is missing";
+    const std::string help = cli::help_text(command.spec);
+    for (const cli::OptionSpec& option : command.spec.options) {
+      const std::string flag = std::string("--") + option.name;
+      EXPECT_NE(help.find(flag), std::string::npos) << command.spec.name << " --help lacks " << flag;
+      EXPECT_NE(page.find(flag), std::string::npos) << "fvx-" << command.spec.name << ".1 lacks " << flag;
+    }
+  }
+}
+
+TEST(Manual, FvxPageNamesEveryCommandInTableOrder) {
+  const std::string page = man_page_text("fvx.1");
+  std::size_t last = 0;
+  for (const cli::Command& command : cli::commands()) {
+    const std::size_t at = page.find(std::string("fvx-") + command.spec.name);
+    ASSERT_NE(at, std::string::npos) << "fvx.1 lacks " << command.spec.name;
+    EXPECT_GE(at, last) << "fvx.1 lists " << command.spec.name << " out of pipeline order";
+    last = at;
+  }
+}
+
+TEST(Manual, HelpListsCommandsInTableOrder) {
+  const std::string help = cli::top_level_help();
+  std::size_t last = 0;
+  for (const cli::Command& command : cli::commands()) {
+    const std::size_t at = help.find(std::string("  ") + command.spec.name + " ");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_GE(at, last);
+    last = at;
+  }
+}
+
+}  // namespace
+}  // namespace fvx::test

@@ -1,0 +1,83 @@
+// Cloud files: PCD in its three encodings and PLY; VIEWPOINT; bad files.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "fvx/core/error.hpp"
+#include "fvx/io/cloud_file.hpp"
+#include "test_support.hpp"
+
+namespace fvx::io {
+namespace {
+
+const char* kAsciiPcd =
+    "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+    "WIDTH 3\nHEIGHT 1\nVIEWPOINT 1 2 3 0 0 0.7071068 0.7071068\nPOINTS 3\nDATA ascii\n"
+    "1 0 0\n0 1 0\nnan nan nan\n";
+
+TEST(CloudFile, AsciiPcdWithViewpoint) {
+  const test::TempDir dir;
+  std::ofstream(dir / "a.pcd") << kAsciiPcd;
+  const CloudFile c = read_cloud(dir / "a.pcd");
+  ASSERT_EQ(c.points.size(), 3u);
+  EXPECT_EQ(c.points[1], Eigen::Vector3d(0, 1, 0));
+  EXPECT_FALSE(c.points[2].allFinite());  // NaN kept: filtering is the scan stage's job
+  EXPECT_NEAR((c.viewpoint.translation() - Eigen::Vector3d(1, 2, 3)).norm(), 0, 1e-6);
+  // VIEWPOINT quaternion is w x y z: (0, 0, 0.707, 0.707) is 180° about (0, 1, 1)/√2.
+  EXPECT_NEAR((c.viewpoint.linear() * Eigen::Vector3d(0, 1, 1) - Eigen::Vector3d(0, 1, 1)).norm(), 0, 1e-6);
+  EXPECT_FALSE(is_legacy_openni_viewpoint(c.viewpoint));
+}
+
+TEST(CloudFile, BinaryPcdRoundTripKeepsThePose) {
+  const test::TempDir dir;
+  Eigen::Isometry3d T(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  T.pretranslate(Eigen::Vector3d(0.5, -1, 2));
+  write_pcd(dir / "b.pcd", {Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(-1, 0, 0.5f)}, T);
+  const CloudFile c = read_cloud(dir / "b.pcd");
+  ASSERT_EQ(c.points.size(), 2u);
+  EXPECT_EQ(c.points[0], Eigen::Vector3d(1, 2, 3));
+  EXPECT_TRUE(c.viewpoint.isApprox(T, 1e-6));
+}
+
+TEST(CloudFile, AsciiPly) {
+  const test::TempDir dir;
+  std::ofstream(dir / "p.ply") << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                                  "property float y\nproperty float z\nend_header\n1 2 3\n4 5 6\n";
+  const CloudFile c = read_cloud(dir / "p.ply");
+  ASSERT_EQ(c.points.size(), 2u);
+  EXPECT_EQ(c.points[1], Eigen::Vector3d(4, 5, 6));
+}
+
+TEST(CloudFileRealData, BinaryCompressedOrganisedKinectFrameWithLegacyViewpoint) {
+  FVX_REAL_DATA_OR_SKIP(path, "pcl-kinect-sequences/pcl_grabber_sequences/pcd/frame_20121214T142255.814212.pcd");
+  const CloudFile c = read_cloud(path);
+  EXPECT_EQ(c.width, 640);
+  EXPECT_EQ(c.height, 480);
+  EXPECT_EQ(c.points.size(), 307200u);
+  EXPECT_TRUE(is_legacy_openni_viewpoint(c.viewpoint));  // VIEWPOINT 0 0 0 0 1 0 0
+  std::size_t finite = 0;
+  for (const auto& p : c.points) finite += p.allFinite();
+  EXPECT_GT(finite, 250000u);  // about 88 % (PROVENANCE.md)
+}
+
+TEST(CloudFile, BadFilesAreRefusedWithTheirName) {
+  const test::TempDir dir;
+  std::string corrupt = kAsciiPcd;
+  corrupt.replace(corrupt.find("POINTS 3"), 8, "POINTS x");
+  std::ofstream(dir / "corrupt.pcd") << corrupt;
+  std::ofstream(dir / "nofields.pcd") << "VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\n"
+                                         "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n";
+  std::ofstream(dir / "garbage.pcd") << "\x01\x02 this is not a point cloud";
+  std::ofstream(dir / "cloud.xyz") << "1 2 3\n";
+  for (const char* name : {"corrupt.pcd", "nofields.pcd", "garbage.pcd", "cloud.xyz", "missing.pcd"}) {
+    try {
+      read_cloud(dir / name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fvx::io

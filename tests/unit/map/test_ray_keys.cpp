@@ -1,0 +1,45 @@
+// The ray traversal used by integrate() visits exactly the cells of OctoMap's computeRayKeys.
+#include <gtest/gtest.h>
+#include <octomap/OcTree.h>
+
+#include <random>
+
+#include "../../../src/map/ray_keys.hpp"
+
+namespace fvx::map {
+namespace {
+
+void expect_same_keys(const octomap::OcTree& tree, const octomap::point3d& a, const octomap::point3d& b) {
+  octomap::KeyRay reference;
+  const bool ok_reference = tree.computeRayKeys(a, b, reference);
+  std::vector<octomap::OcTreeKey> mine;
+  const bool ok_mine = for_each_ray_key(tree, a, b, [&](const octomap::OcTreeKey& k) { mine.push_back(k); });
+  ASSERT_EQ(ok_mine, ok_reference);
+  ASSERT_EQ(mine.size(), reference.size()) << a << " -> " << b;
+  std::size_t i = 0;
+  for (const auto& k : reference) ASSERT_EQ(mine[i++], k) << a << " -> " << b << " step " << i;
+}
+
+TEST(RayKeys, EqualToOctoMapOnRandomRays) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f);
+  for (double resolution : {0.025, 0.05, 0.1}) {
+    const octomap::OcTree tree(resolution);
+    for (int i = 0; i < 20000; ++i)
+      expect_same_keys(tree, {coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)});
+  }
+}
+
+TEST(RayKeys, EqualToOctoMapOnAxisAlignedAndBorderRays) {
+  const octomap::OcTree tree(0.05);
+  const float border = 0.05f * 7;  // exactly on a cell border
+  expect_same_keys(tree, {0.01f, 0.01f, 0.01f}, {2.01f, 0.01f, 0.01f});
+  expect_same_keys(tree, {0.01f, 0.01f, 0.01f}, {0.01f, -2.01f, 0.01f});
+  expect_same_keys(tree, {border, border, border}, {-border, 3 * border, 0.0f});
+  expect_same_keys(tree, {0, 0, 0}, {1, 1, 1});  // through cell corners
+  expect_same_keys(tree, {0.01f, 0.01f, 0.01f}, {0.02f, 0.02f, 0.02f});  // same cell
+  expect_same_keys(tree, {0, 0, 0}, {5000.0f, 0, 0});                   // end outside the key space
+}
+
+}  // namespace
+}  // namespace fvx::map
