@@ -130,6 +130,8 @@ Json config_json(const Options& o, const map::OccupancyMap& map) {
               {"voxel_m", o.reg.voxel_m},
               {"max_correspondence_m", o.reg.max_correspondence_m},
               {"fine_correspondence_m", o.reg.fine_correspondence_m},
+              {"fine_voxel_m", o.reg.fine_voxel_m},
+              {"min_observability", o.reg.min_observability},
               {"max_iterations", o.reg.max_iterations},
               {"translation_epsilon_m", o.reg.translation_epsilon_m},
               {"rotation_epsilon_rad", o.reg.rotation_epsilon_rad}};
@@ -177,6 +179,7 @@ Json registration_json(const registration::Result& r) {
             {"target_points", r.target_points},
             {"correction", {{"translation_m", r.correction_translation_m},
                             {"rotation_deg", r.correction_rotation_deg}}}};
+  j["weak_directions"] = r.weak_directions;
   if (!r.problem.empty()) j["problem"] = r.problem;
   return j;
 }

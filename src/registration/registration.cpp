@@ -7,10 +7,15 @@
 #include <pcl/registration/gicp.h>
 #include <pcl/registration/icp.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
+#include "fvx/registration/observability.hpp"
 
 namespace fvx::registration {
 
@@ -25,6 +30,7 @@ Method parse_method(const std::string& text, const std::string& what) {
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems;
   if (!(voxel_m >= 0.0) || !std::isfinite(voxel_m)) problems.push_back("voxel_m must be >= 0 m");
+  if (!(fine_voxel_m >= 0.0) || !std::isfinite(fine_voxel_m)) problems.push_back("fine_voxel_m must be >= 0 m");
   if (!(max_correspondence_m > 0.0) || !std::isfinite(max_correspondence_m))
     problems.push_back("max_correspondence_m must be > 0 m");
   if (!(fine_correspondence_m > 0.0) || !std::isfinite(fine_correspondence_m))
@@ -73,30 +79,73 @@ bool run_pass(Registration& reg, const Config& config, double max_correspondence
   return reg.hasConverged() && reg.iterations() < config.max_iterations;
 }
 
-/// The coarse pass, then the fine pass from its result.
-bool run_schedule(const Config& config, const Cloud::Ptr& source, const Cloud::Ptr& target,
-                  Eigen::Matrix4f& T_inout, int& iterations) {
-  std::vector<double> limits = {config.max_correspondence_m};
+struct Pass {
+  double correspondence_m;
+  double voxel_m;
+};
+
+/// The coarse pass, then the fine pass from its result (Config documents why).
+std::vector<Pass> schedule(const Config& config) {
+  std::vector<Pass> passes = {{config.max_correspondence_m, config.voxel_m}};
   if (config.fine_correspondence_m < config.max_correspondence_m)
-    limits.push_back(config.fine_correspondence_m);
-  bool stopped = true;
-  for (const double limit : limits) {
-    if (config.method == Method::Gicp) {
-      CountingRegistration<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
-      // GICP compares each matrix entry's change with the epsilons: metres and radians.
-      gicp.setTransformationEpsilon(config.translation_epsilon_m);
-      gicp.setRotationEpsilon(config.rotation_epsilon_rad);
-      stopped &= run_pass(gicp, config, limit, source, target, T_inout, iterations);
-    } else {
-      CountingRegistration<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
-      // ICP's criteria compare the *squared* translation step and the cosine of the rotation
-      // step; with the metre value it stopped after two iterations, 0.8° off.
-      icp.setTransformationEpsilon(config.translation_epsilon_m * config.translation_epsilon_m);
-      icp.getConvergeCriteria()->setRotationThreshold(std::cos(config.rotation_epsilon_rad));
-      stopped &= run_pass(icp, config, limit, source, target, T_inout, iterations);
-    }
+    passes.push_back({config.fine_correspondence_m, config.fine_voxel_m});
+  return passes;
+}
+
+bool run_pass(const Config& config, const Pass& pass, const Cloud::Ptr& source,
+              const Cloud::Ptr& target, Eigen::Matrix4f& T_inout, int& iterations) {
+  if (config.method == Method::Gicp) {
+    CountingRegistration<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
+    // GICP compares each matrix entry's change with the epsilons: metres and radians.
+    gicp.setTransformationEpsilon(config.translation_epsilon_m);
+    gicp.setRotationEpsilon(config.rotation_epsilon_rad);
+    return run_pass(gicp, config, pass.correspondence_m, source, target, T_inout, iterations);
   }
-  return stopped;
+  CountingRegistration<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
+  // ICP's criteria compare the *squared* translation step and the cosine of the rotation
+  // step; with the metre value it stopped after two iterations, 0.8° off.
+  icp.setTransformationEpsilon(config.translation_epsilon_m * config.translation_epsilon_m);
+  icp.getConvergeCriteria()->setRotationThreshold(std::cos(config.rotation_epsilon_rad));
+  return run_pass(icp, config, pass.correspondence_m, source, target, T_inout, iterations);
+}
+
+struct Constraints {
+  std::vector<PlaneConstraint> constraints;
+  double length_scale_m = 1.0;
+};
+
+/// Point-to-plane constraints of the aligned source: for every source point with a target
+/// point within `limit_m`, the target's local plane (PCA of its 12 nearest target points).
+/// Points whose neighbourhood is not planar (edges, corners, clutter) give no constraint.
+Constraints plane_constraints(const Cloud& source, const Cloud& target, const pcl::KdTreeFLANN<pcl::PointXYZ>& tree,
+                              const Eigen::Matrix4f& T_local_sensor, double limit_m) {
+  Constraints out;
+  std::vector<int> index;
+  std::vector<float> distance_sq;
+  std::vector<double> ranges;
+  for (const auto& p : source.points) {
+    const Eigen::Vector4f q = T_local_sensor * Eigen::Vector4f(p.x, p.y, p.z, 1.0f);
+    const pcl::PointXYZ query(q.x(), q.y(), q.z());
+    if (tree.nearestKSearch(query, 1, index, distance_sq) != 1 || distance_sq[0] > limit_m * limit_m) continue;
+    if (tree.nearestKSearch(target.points[std::size_t(index[0])], 12, index, distance_sq) < 6) continue;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int i : index) mean += target.points[std::size_t(i)].getVector3fMap().cast<double>();
+    mean /= double(index.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (int i : index) {
+      const Eigen::Vector3d d = target.points[std::size_t(i)].getVector3fMap().cast<double>() - mean;
+      covariance += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);
+    if (pca.eigenvalues()[0] > 0.1 * pca.eigenvalues()[1]) continue;  // not a plane
+    out.constraints.push_back({q.head<3>().cast<double>(), pca.eigenvectors().col(0)});
+    ranges.push_back(q.head<3>().cast<double>().norm());
+  }
+  if (!ranges.empty()) {
+    std::nth_element(ranges.begin(), ranges.begin() + long(ranges.size() / 2), ranges.end());
+    out.length_scale_m = std::max(0.5, ranges[ranges.size() / 2]);
+  }
+  return out;
 }
 
 }  // namespace
@@ -121,7 +170,6 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
     source->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
     box_local.extend((T_local_sensor_prior * p).cast<float>());
   }
-  source = downsample(source, config.voxel_m);
 
   Cloud::Ptr target(new Cloud);
   const float margin = float(config.max_correspondence_m);
@@ -131,17 +179,25 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
     const Eigen::Vector3f local = (q.cast<double>() - origin_world).cast<float>();
     if (box_local.contains(local)) target->push_back(pcl::PointXYZ(local.x(), local.y(), local.z()));
   }
-  target = downsample(target, config.voxel_m);
-  result.source_points = source->size();
-  result.target_points = target->size();
-  if (source->size() < std::size_t(config.min_points) || target->size() < std::size_t(config.min_points)) {
-    result.problem = "too few points to register (source " + std::to_string(source->size()) +
-                     ", target near the prior " + std::to_string(target->size()) + ")";
-    return result;
-  }
 
   Eigen::Matrix4f T_local_sensor = T_local_sensor_prior.matrix().cast<float>();
-  const bool stopped = run_schedule(config, source, target, T_local_sensor, result.iterations);
+  bool stopped = true;
+  Cloud::Ptr source_pass, target_pass;
+  for (const Pass& pass : schedule(config)) {
+    source_pass = downsample(source, pass.voxel_m);
+    target_pass = downsample(target, pass.voxel_m);
+    result.source_points = source_pass->size();
+    result.target_points = target_pass->size();
+    if (source_pass->size() < std::size_t(config.min_points) ||
+        target_pass->size() < std::size_t(config.min_points)) {
+      result.problem = "too few points to register (source " + std::to_string(source_pass->size()) +
+                       ", target near the prior " + std::to_string(target_pass->size()) + ")";
+      return result;
+    }
+    stopped &= run_pass(config, pass, source_pass, target_pass, T_local_sensor, result.iterations);
+  }
+  source = source_pass;
+  target = target_pass;
 
   // Fitness against the target, computed here so that both methods report the same measure.
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
@@ -179,6 +235,18 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
     result.problem = "no source point lies within the correspondence limit of the target";
     return result;
   }
+  // Keep the prior along directions the geometry does not constrain (observability.hpp).
+  const Constraints planes = plane_constraints(*source, *target, tree, T_local_sensor, limit_m);
+  const Observability observability =
+      analyse_observability(planes.constraints, planes.length_scale_m, config.min_observability);
+  for (int i = 0; i < observability.weak_count; ++i)
+    result.weak_directions.push_back(describe_direction(observability, i));
+  Eigen::Isometry3d T_local_refined = T_world_sensor;
+  T_local_refined.translation() -= origin_world;
+  const Eigen::Isometry3d T_local_kept = constrain_correction(T_local_sensor_prior, T_local_refined, observability);
+  T_world_sensor = T_local_kept;
+  T_world_sensor.pretranslate(origin_world);
+
   result.converged = true;
   result.T_world_sensor = T_world_sensor;
   result.correction_translation_m =

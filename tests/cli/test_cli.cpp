@@ -108,6 +108,39 @@ TEST(Cli, UpdatingAMapRegistersTheNewScan) {
   EXPECT_EQ(run_fvx(dir, "integrate --map map.ot --resolution 0.1 -o map3.ot b.pcd").status, 2);
 }
 
+// The bundled sample has exact poses: registration, on by default, must leave them alone.
+TEST(Cli, RegistrationKeepsTheExactPosesOfTheSample) {
+  const char* source = std::getenv("FVX_SOURCE_DIR");
+  ASSERT_NE(source, nullptr);
+  const TempDir dir;
+  std::string scans;
+  for (int v = 0; v < 4; ++v) scans += std::string(" ") + source + "/data/sample/box-room/view" + std::to_string(v) + ".pcd";
+  const RunResult r = run_fvx(dir, "integrate -o m.ot" + scans);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  for (int v = 1; v < 4; ++v) {
+    const json& reg = report["results"]["scans"][v]["registration"];
+    EXPECT_EQ(reg["converged"], true) << v;
+    EXPECT_LT(reg["correction"]["translation_m"].get<double>(), 0.005) << v;
+    EXPECT_LT(reg["correction"]["rotation_deg"].get<double>(), 0.2) << v;
+  }
+}
+
+TEST(Cli, ARegistrationThatDoesNotConvergeKeepsThePriorAndWarns) {
+  const TempDir dir;
+  write_wall_scan(dir / "a.pcd", 0.0);
+  write_wall_scan(dir / "b.pcd", 0.3);
+  const RunResult r = run_fvx(dir, "integrate -o m.ot --reg-max-iter 1 a.pcd b.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  const json& scan = report["results"]["scans"][1];
+  EXPECT_EQ(scan["registration"]["converged"], false);
+  EXPECT_TRUE(scan["registration"].contains("problem"));
+  EXPECT_EQ(scan["T_world_sensor"], scan["prior"]);
+  ASSERT_EQ(report["warnings"].size(), 1u);
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("b.pcd"), std::string::npos);
+}
+
 struct BadInput {
   const char* name;
   const char* arguments;
