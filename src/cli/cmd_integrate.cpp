@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "command_table.hpp"
+#include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/map/occupancy_map.hpp"
@@ -224,7 +225,7 @@ int run_integrate(int argc, char** argv) {
   if (!output_dir.empty() && !std::filesystem::is_directory(output_dir))
     throw FileError(o.output_path, "cannot write: folder '" + output_dir.string() + "' does not exist");
   {
-    const std::string ext = std::filesystem::path(o.output_path).extension().string();
+    const std::string ext = lowercase_extension(o.output_path);
     if (ext != ".bt" && ext != ".ot")
       throw UsageError("fvx integrate: --output " + o.output_path + ": expected a .bt or .ot file name");
   }

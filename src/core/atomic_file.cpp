@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -68,6 +69,12 @@ void write_file_atomically(const std::string& path,
     out.flush();
     if (!out) throw FileError(path, "cannot write: write failed (disk full?)");
   });
+}
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 void require_readable_file(const std::string& path) {

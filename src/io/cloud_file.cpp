@@ -8,19 +8,12 @@
 #include <pcl/point_types.h>
 
 #include <algorithm>
-#include <filesystem>
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 
 namespace fvx::io {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 /// PCL reports problems on stderr itself; fvx reports them once, through its own errors.
 void silence_pcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
@@ -35,7 +28,7 @@ bool has_field(const pcl::PCLPointCloud2& cloud, const std::string& name) {
 CloudFile read_cloud(const std::string& path) {
   require_readable_file(path);
   silence_pcl();
-  const std::string ext = lower_extension(path);
+  const std::string ext = lowercase_extension(path);
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();

@@ -1,7 +1,5 @@
 #include "fvx/io/depth_image.hpp"
 
-#include <algorithm>
-#include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -11,8 +9,7 @@
 namespace fvx::io {
 
 bool is_depth_image_path(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   return ext == ".png" || ext == ".pgm" || ext == ".tif" || ext == ".tiff";
 }
 

@@ -18,12 +18,6 @@
 namespace fvx::map {
 namespace {
 
-std::string extension_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 /// OctoMap reports problems (and chatter such as " done.") with fprintf(stderr) and
 /// std::cerr. While it reads or writes, file descriptor 2 goes to a temporary file; what it
 /// said becomes part of fvx's one-line error instead of stray lines on stderr.
@@ -66,7 +60,7 @@ class CaptureStderr {
 };
 
 void require_map_extension(const std::string& path) {
-  const std::string ext = extension_of(path);
+  const std::string ext = lowercase_extension(path);
   if (ext != ".bt" && ext != ".ot")
     throw FileError(path, "unknown map format '" + ext + "'; expected .bt or .ot");
 }
@@ -79,7 +73,7 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   CaptureStderr capture;
 
-  if (extension_of(path) == ".bt") {
+  if (lowercase_extension(path) == ".bt") {
     std::string first_line;
     std::getline(in, first_line);
     in.seekg(0);
@@ -120,7 +114,7 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
 
 void OccupancyMap::save(const std::string& path) const {
   require_map_extension(path);
-  const bool binary = extension_of(path) == ".bt";
+  const bool binary = lowercase_extension(path) == ".bt";
   write_file_atomically(path, [&](std::ostream& out) {
     CaptureStderr capture;
     bool ok;

@@ -20,6 +20,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 void write_path_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 
+/// The extension of `path` in lower case, with its dot (".pcd"), or "" when it has none.
+std::string lowercase_extension(const std::string& path);
+
 /// Throws FileError if `path` does not exist or is not a readable regular file.
 void require_readable_file(const std::string& path);
 
