@@ -87,7 +87,9 @@ Options parse(const Args& args) {
   o.filter.depth_min_m = args.number("depth-min", 0.0, 0.0, big);
   o.filter.depth_max_m = args.number("depth-max", inf, 0.0, big, true);
   o.filter.voxel_m = args.number("downsample", 0.0, 0.0, 10.0);
-  for (const auto& problem : o.filter.validate()) throw UsageError("fvx integrate: " + problem);
+  if (!(o.filter.depth_max_m > o.filter.depth_min_m))
+    throw UsageError("fvx integrate: --depth-max must be greater than --depth-min");
+  FVX_ASSERT(o.filter.validate().empty(), "filter options were checked above");
 
   if (args.has("pose") && args.has("trajectory"))
     throw UsageError("fvx integrate: give --pose or --trajectory, not both");

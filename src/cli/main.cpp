@@ -3,24 +3,35 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 #include "command_table.hpp"
 #include "fvx/core/error.hpp"
+
+namespace {
+
+/// One line: messages from a command already start with "fvx <command>: ".
+void report(const char* message) {
+  const bool named = std::string(message).rfind("fvx ", 0) == 0;
+  std::fprintf(stderr, "%s%s\n", named ? "" : "fvx: ", message);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   try {
     return fvx::cli::run(argc, argv);
   } catch (const fvx::UsageError& e) {
-    std::fprintf(stderr, "fvx: %s\n", e.what());
+    report(e.what());
     return 2;
   } catch (const fvx::Error& e) {
-    std::fprintf(stderr, "fvx: %s\n", e.what());
+    report(e.what());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "fvx: out of memory\n");
+    report("out of memory");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fvx: unexpected error: %s\n", e.what());
+    report((std::string("unexpected error: ") + e.what()).c_str());
     return 1;
   }
 }

@@ -169,7 +169,8 @@ TEST_P(CliBadInput, OneLineErrorAndTheExistingMapIsUntouched) {
   const RunResult r = run_fvx(dir, c.arguments);
   EXPECT_EQ(r.status, c.status) << r.err;
   EXPECT_EQ(line_count(r.err), 1u) << r.err;
-  EXPECT_EQ(r.err.rfind("fvx: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("fvx", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("fvx: fvx"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(c.must_mention), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(slurp(dir / "out.bt"), before);
