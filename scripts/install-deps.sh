@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libpcl-dev liboctomap-dev libeigen3-dev libopencv-dev nlohmann-json3-dev
+  libcgal-dev libembree-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -12,6 +12,7 @@
 #include "fvx/map/occupancy_map.hpp"
 #include "fvx/registration/registration.hpp"
 #include "fvx/scan/load.hpp"
+#include "common_options.hpp"
 #include "report.hpp"
 
 namespace fvx::cli {
@@ -20,7 +21,7 @@ const CommandSpec kIntegrateSpec = {
     "integrate",
     "-o MAP.bt|MAP.ot [options] SCAN...",
     "integrate recorded scans (PCD, PLY, depth images) into an OctoMap",
-    {
+    options({{
         {"output", 'o', "FILE", "map to write, .bt or .ot (required; written atomically)"},
         {"map", 0, "FILE", "start from this map (.bt/.ot) instead of an empty one"},
         {"report", 0, "FILE", "write the JSON report to FILE instead of stdout"},
@@ -38,12 +39,7 @@ const CommandSpec kIntegrateSpec = {
                                   "seconds (default 0.02)"},
         {"ignore-viewpoint", 0, nullptr, "do not use the PCD VIEWPOINT as pose (legacy OpenNI "
                                          "captures)"},
-        {"intrinsics", 'K', "FILE", "depth camera intrinsics JSON (fvx or Open3D layout)"},
-        {"fx", 0, "PX", "focal length along u, pixels (overrides --intrinsics; default 525)"},
-        {"fy", 0, "PX", "focal length along v, pixels; may be negative (default 525)"},
-        {"cx", 0, "PX", "principal point u, pixels (default 319.5)"},
-        {"cy", 0, "PX", "principal point v, pixels (default 239.5)"},
-        {"depth-scale", 0, "N", "raw depth units per metre: 1000 (mm) or 5000 (TUM) (default 1000)"},
+    }, intrinsics_options(false), {
         {"register", 0, nullptr, "align each scan to the map before integrating it (default)"},
         {"no-register", 0, nullptr, "integrate scans at their pose priors, without registration"},
         {"reg-method", 0, "NAME", "registration method: gicp (default) or icp"},
@@ -56,7 +52,7 @@ const CommandSpec kIntegrateSpec = {
         {"timing", 0, nullptr, "add per-stage times (seconds) to the report"},
         {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
         {"help", 'h', nullptr, "show this help"},
-    }};
+    }})};
 
 namespace {
 
@@ -98,18 +94,7 @@ Options parse(const Args& args) {
   o.load.max_time_diff_s = args.number("max-time-diff", 0.02, 0.0, big);
   o.load.use_viewpoint = !args.has("ignore-viewpoint");
 
-  const bool any_intrinsic_flag = args.has("fx") || args.has("fy") || args.has("cx") ||
-                                  args.has("cy") || args.has("depth-scale");
-  if (args.has("intrinsics") || any_intrinsic_flag) {
-    io::Intrinsics K = args.has("intrinsics") ? io::read_intrinsics(args.get("intrinsics")) : io::Intrinsics{};
-    K.fx = args.number("fx", K.fx, -big, big);
-    K.fy = args.number("fy", K.fy, -big, big);
-    K.cx = args.number("cx", K.cx, -big, big);
-    K.cy = args.number("cy", K.cy, -big, big);
-    K.depth_scale = args.number("depth-scale", K.depth_scale, 0.0, big, true);
-    for (const auto& problem : K.validate()) throw UsageError("fvx integrate: intrinsics: " + problem);
-    o.load.intrinsics = K;
-  }
+  o.load.intrinsics = parse_intrinsics(args, "integrate");
 
   if (args.has("register") && args.has("no-register"))
     throw UsageError("fvx integrate: --register and --no-register contradict each other");
@@ -152,11 +137,7 @@ Json config_json(const Options& o, const map::OccupancyMap& map) {
                               {"clamp_min", model.clamp_min},
                               {"clamp_max", model.clamp_max},
                               {"occupancy_threshold", model.occupancy_threshold}}}};
-  if (o.load.intrinsics) {
-    const auto& K = *o.load.intrinsics;
-    c["intrinsics"] = {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cx}, {"cy", K.cy},
-                       {"depth_scale", K.depth_scale}, {"width", K.width}, {"height", K.height}};
-  }
+  if (o.load.intrinsics) c["intrinsics"] = intrinsics_json(*o.load.intrinsics);
   return c;
 }
 

@@ -14,6 +14,7 @@ namespace fvx::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {kIntegrateSpec, run_integrate},
+      {kSimulateSpec, run_simulate},
   };
   return table;
 }

@@ -23,5 +23,7 @@ std::string top_level_help();
 // Commands (one cmd_<name>.cpp each).
 extern const CommandSpec kIntegrateSpec;
 int run_integrate(int argc, char** argv);
+extern const CommandSpec kSimulateSpec;
+int run_simulate(int argc, char** argv);
 
 }  // namespace fvx::cli

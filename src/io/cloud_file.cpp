@@ -83,13 +83,15 @@ bool is_legacy_openni_viewpoint(const Eigen::Isometry3d& T) {
 }
 
 void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
-               const Eigen::Isometry3d& T_world_sensor) {
+               const Eigen::Isometry3d& T_world_sensor, int width, int height) {
   silence_pcl();
   pcl::PointCloud<pcl::PointXYZ> cloud;
   cloud.reserve(points.size());
   for (const auto& p : points) cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  cloud.width = static_cast<std::uint32_t>(points.size());
-  cloud.height = 1;
+  const bool organised = width > 0 && height > 0 && std::size_t(width) * std::size_t(height) == points.size();
+  cloud.width = organised ? std::uint32_t(width) : std::uint32_t(points.size());
+  cloud.height = organised ? std::uint32_t(height) : 1u;
+  cloud.is_dense = std::all_of(points.begin(), points.end(), [](const Eigen::Vector3f& p) { return p.allFinite(); });
   const Eigen::Vector3d t = T_world_sensor.translation();
   cloud.sensor_origin_ = Eigen::Vector4f(float(t.x()), float(t.y()), float(t.z()), 0.0f);
   cloud.sensor_orientation_ = Eigen::Quaterniond(T_world_sensor.rotation()).cast<float>();

@@ -89,6 +89,15 @@ std::optional<double> OccupancyMap::probability(const VoxelKey& key) const {
   return node->getOccupancy();
 }
 
+void OccupancyMap::set_state(const VoxelKey& key, VoxelState state) {
+  auto& tree = impl_->tree;
+  const octomap::OcTreeKey k = to_octree_key(key);
+  if (state == VoxelState::Unknown)
+    tree.deleteNode(k);
+  else
+    tree.setNodeValue(k, state == VoxelState::Occupied ? tree.getClampingThresMaxLog() : tree.getClampingThresMinLog());
+}
+
 RayCast OccupancyMap::cast_ray(const RayQuery& query) const {
   FVX_ASSERT(query.direction_world.allFinite() && query.direction_world.norm() > 1e-12,
              "ray direction must be finite and non-zero");

@@ -2,6 +2,8 @@
 // Runs the fvx binary as a user would and captures exit status, stdout and stderr.
 #include <sys/wait.h>
 
+#include <fstream>
+
 #include <cstdlib>
 #include <fstream>
 #include <sstream>

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "fvx/io/depth_image.hpp"
+
 namespace fvx::io {
 
 /// A cloud as stored in its file.
@@ -30,9 +32,10 @@ CloudFile read_cloud(const std::string& path);
 /// grabbers wrote while storing points already in the optical frame.
 bool is_legacy_openni_viewpoint(const Eigen::Isometry3d& T);
 
-/// Writes an unorganised binary PCD (x y z float) with `T_world_sensor` in VIEWPOINT,
-/// atomically.
+/// Writes a binary PCD (x y z float) with `T_world_sensor` in VIEWPOINT, atomically.
+/// With `width`·`height` equal to the number of points the cloud is organised (row-major,
+/// NaN where a pixel has no measurement); otherwise unorganised.
 void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
-               const Eigen::Isometry3d& T_world_sensor);
+               const Eigen::Isometry3d& T_world_sensor, int width = 0, int height = 0);
 
 }  // namespace fvx::io

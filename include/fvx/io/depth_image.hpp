@@ -20,6 +20,9 @@ struct DepthImage {
 /// 8-bit or colour image, or an empty image.
 DepthImage read_depth_image(const std::string& path);
 
+/// Writes a 16-bit single-channel PNG, atomically.
+void write_depth_png(const std::string& path, const DepthImage& depth);
+
 /// True when the file extension is one read_depth_image accepts (.png .pgm .tif .tiff).
 bool is_depth_image_path(const std::string& path);
 

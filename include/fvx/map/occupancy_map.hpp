@@ -135,6 +135,10 @@ class OccupancyMap {
                         const Eigen::Vector3f& origin_world,
                         double max_range_m = std::numeric_limits<double>::infinity());
 
+  /// Sets a cell to a state directly: Free and Occupied at the clamping bounds, Unknown by
+  /// deleting it. For ground truth and tests; scans go through integrate().
+  void set_state(const VoxelKey& key, VoxelState state);
+
   /// Walks the cells along a ray (Amanatides–Woo) and reports how it ended.
   RayCast cast_ray(const RayQuery& query) const;
 

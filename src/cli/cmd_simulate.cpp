@@ -1,0 +1,243 @@
+// fvx simulate — a scene mesh and sensor poses → the scans a Kinect would record there
+// (PCD with VIEWPOINT, or depth PNGs with a trajectory), and the scene's voxel ground truth.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
+#include "fvx/core/pose.hpp"
+#include "fvx/io/cloud_file.hpp"
+#include "fvx/io/trajectory.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/sim/ground_truth.hpp"
+#include "report.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kSimulateSpec = {
+    "simulate",
+    "SCENE.ply|.obj|.stl|builtin:NAME (--pose P | --look-at E,T | --poses FILE) -o OUT [options]",
+    "render the scans a Kinect would record in a scene; voxel ground truth",
+    options({{
+        {"output", 'o', "PATH", "one pose: the scan file (.pcd, or .png with --depth-png); "
+                                "several: a folder (created)"},
+        {"pose", 0, "x,y,z,qx,qy,qz,qw", "sensor pose T_world_sensor (metres, quaternion scalar-last)"},
+        {"look-at", 0, "ex,ey,ez,tx,ty,tz", "sensor at eye E looking at target T, world z up"},
+        {"poses", 0, "FILE", "one scan per pose of a TUM or Redwood .log trajectory"},
+        {"scene-info", 0, "FILE", "ground-truth sidecar JSON (default: SCENE with .json, if present)"},
+    }, intrinsics_options(true), {
+        {"depth-min", 0, "M", "nearest measurable depth, metres (default 0.5)"},
+        {"depth-max", 0, "M", "farthest measurable depth, metres (default 4)"},
+        {"noise", 0, "MODEL", "depth noise: none (default) or kinect (sigma = 1.4 mm * z^2, z in m)"},
+        {"quantize", 0, nullptr, "round depth to Kinect v1 disparity steps (1/8 pixel, 7.5 cm baseline)"},
+        {"dropout-deg", 0, "DEG", "drop surfaces seen at more than DEG from their normal (default 90: none)"},
+        {"seed", 0, "N", "noise seed (default 1)"},
+        {"depth-png", 0, nullptr, "write 16-bit depth PNGs (and trajectory.txt, intrinsics.json) "
+                                  "instead of PCD"},
+        {"ground-truth", 0, "FILE.bt", "write the scene's voxel ground truth as a map (solid "
+                                       "occupied, empty free)"},
+        {"resolution", 'r', "M", "ground-truth cell edge, metres (default 0.05)"},
+        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "ground-truth region, metres (default: the sidecar's "
+                                           "search space, else the mesh bounds)"},
+        {"backend", 0, "NAME", "ray casting: embree (default), cgal or brute"},
+        {"threads", 0, "N", "render threads (default 0: all cores)"},
+        {"report", 0, "FILE", "write the JSON report to FILE instead of stdout"},
+        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
+        {"help", 'h', nullptr, "show this help"},
+    }})};
+
+namespace {
+
+Eigen::Isometry3d look_at(const std::string& text) {
+  const std::vector<double> v = parse_double_list(text, "--look-at (ex,ey,ez,tx,ty,tz)", 6);
+  const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
+  const Eigen::Vector3d z = target - eye;
+  if (z.norm() < 1e-9) throw UsageError("--look-at: the eye and the target coincide");
+  const Eigen::Vector3d forward = z.normalized();
+  // Optical frame: x right, y down. Looking straight up or down, take world x as "up".
+  const Eigen::Vector3d up = std::abs(forward.z()) > 0.999 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d x = forward.cross(up).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() << x, forward.cross(x), forward;
+  T.translation() = eye;
+  return T;
+}
+
+std::vector<Eigen::Isometry3d> poses_from(const Args& args) {
+  const int given = int(args.has("pose")) + int(args.has("look-at")) + int(args.has("poses"));
+  if (given > 1) throw UsageError("fvx simulate: give one of --pose, --look-at, --poses");
+  if (args.has("pose")) return {parse_pose(args.get("pose"), "--pose")};
+  if (args.has("look-at")) return {look_at(args.get("look-at"))};
+  std::vector<Eigen::Isometry3d> poses;
+  if (args.has("poses"))
+    for (const auto& e : io::read_trajectory(args.get("poses")).entries) poses.push_back(e.T_world_sensor);
+  return poses;
+}
+
+sim::SensorConfig sensor_from(const Args& args) {
+  sim::SensorConfig c;
+  if (auto K = parse_intrinsics(args, "simulate")) c.intrinsics = *K;
+  c.depth_min_m = args.number("depth-min", c.depth_min_m, 0.0, 1e3);
+  c.depth_max_m = args.number("depth-max", c.depth_max_m, 0.0, 1e3, true);
+  if (!(c.depth_max_m > c.depth_min_m)) throw UsageError("fvx simulate: --depth-max must be greater than --depth-min");
+  if (args.has("noise")) {
+    const std::string model = args.get("noise");
+    if (model == "kinect") c.noise_m_per_m2 = 1.4e-3;
+    else if (model != "none") throw UsageError("--noise: '" + model + "' is not a noise model; use none or kinect");
+  }
+  c.quantize_disparity = args.has("quantize");
+  c.dropout_incidence_deg = args.number("dropout-deg", c.dropout_incidence_deg, 0.0, 90.0, true);
+  c.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  c.threads = unsigned(args.integer("threads", 0, 0, 256));
+  FVX_ASSERT(c.validate().empty(), "sensor options were checked above");
+  return c;
+}
+
+sim::Scene scene_from(const std::string& source, const Args& args) {
+  const std::string prefix = "builtin:";
+  if (source.rfind(prefix, 0) == 0) {
+    sim::Scene s = sim::builtin_scene(source.substr(prefix.size()));
+    if (args.has("scene-info")) s.info = sim::read_scene_info(args.get("scene-info"));
+    return s;
+  }
+  return sim::load_scene(source, args.has("scene-info") ? args.get("scene-info") : "");
+}
+
+Json box_json(const Eigen::AlignedBox3d& b) { return {{"min", vec_json(b.min())}, {"max", vec_json(b.max())}}; }
+
+/// TUM trajectory with stamp i for frame i, so that `fvx integrate` matches <i>.png by stamp.
+void write_tum(const std::string& path, const std::vector<Eigen::Isometry3d>& poses) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# timestamp tx ty tz qx qy qz qw (T_world_sensor), written by fvx simulate\n";
+    out.precision(9);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const Eigen::Quaterniond q(poses[i].rotation());
+      const Eigen::Vector3d& t = poses[i].translation();
+      out << i << " " << t.x() << " " << t.y() << " " << t.z() << " " << q.x() << " " << q.y() << " "
+          << q.z() << " " << q.w() << "\n";
+    }
+  });
+}
+
+}  // namespace
+
+int run_simulate(int argc, char** argv) {
+  const Args args = parse_args(kSimulateSpec, argc, argv);
+  if (args.has("help")) {
+    std::fputs(help_text(kSimulateSpec).c_str(), stdout);
+    return 0;
+  }
+  if (args.positional.size() != 1)
+    throw UsageError("fvx simulate: give one scene (a mesh file or builtin:NAME), got " +
+                     std::to_string(args.positional.size()));
+  const std::vector<Eigen::Isometry3d> poses = poses_from(args);
+  const sim::SensorConfig sensor = sensor_from(args);
+  const sim::Backend backend = args.has("backend") ? sim::parse_backend(args.get("backend"), "--backend")
+                                                   : sim::Backend::Embree;
+  const bool depth_png = args.has("depth-png");
+  if (poses.empty() && !args.has("ground-truth"))
+    throw UsageError("fvx simulate: nothing to do; give --pose, --look-at or --poses, or --ground-truth");
+  if (!poses.empty() && !args.has("output")) throw UsageError("fvx simulate: -o/--output is required with poses");
+  const std::string output = args.has("output") ? args.get("output") : "";
+  const bool to_folder = args.has("poses");
+  if (!poses.empty() && !to_folder) {
+    const std::string ext = lowercase_extension(output);
+    if (ext != (depth_png ? ".png" : ".pcd"))
+      throw UsageError("fvx simulate: --output " + output + ": expected a " + (depth_png ? ".png" : ".pcd") + " file");
+  }
+  const double resolution_m = args.number("resolution", 0.05, 0.001, 10.0);
+
+  const sim::Scene scene = scene_from(args.positional[0], args);
+  const auto caster = sim::make_ray_caster(scene.mesh, backend);
+
+  Json report = new_report("simulate");
+  report["config"] = {{"intrinsics", intrinsics_json(sensor.intrinsics)},
+                      {"depth_min_m", sensor.depth_min_m},
+                      {"depth_max_m", sensor.depth_max_m},
+                      {"noise_m_per_m2", sensor.noise_m_per_m2},
+                      {"quantize_disparity", sensor.quantize_disparity},
+                      {"dropout_incidence_deg", sensor.dropout_incidence_deg},
+                      {"seed", sensor.seed},
+                      {"backend", sim::to_string(backend)},
+                      {"output_format", depth_png ? "png" : "pcd"}};
+  report["inputs"] = {{"scene", scene.mesh_path},
+                      {"scene_info", scene.info_path.empty() ? Json(nullptr) : Json(scene.info_path)},
+                      {"scene_name", scene.info.name},
+                      {"triangles", scene.mesh.triangles.size()},
+                      {"vertices", scene.mesh.vertices.size()}};
+  std::vector<std::string> warnings;
+
+  if (to_folder) std::filesystem::create_directories(output);
+  Progress progress(args.has("progress"));
+  Json frames = Json::array();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    progress.update("fvx simulate: frame " + std::to_string(i + 1) + "/" + std::to_string(poses.size()));
+    const Eigen::Isometry3d& T = poses[i];
+    if (sim::inside_solid(*caster, T.translation().cast<float>()))
+      warnings.push_back("frame " + std::to_string(i) + ": the sensor is inside a solid; it sees only the inside of that object");
+    const sim::Frame frame = sim::render(*caster, T, sensor, i);
+    char name[32];
+    std::snprintf(name, sizeof name, "%06zu.%s", i, depth_png ? "png" : "pcd");
+    const std::string path = to_folder ? (std::filesystem::path(output) / name).string() : output;
+    if (depth_png)
+      io::write_depth_png(path, frame.depth);
+    else
+      io::write_pcd(path, frame.points_sensor, T, frame.depth.width, frame.depth.height);
+    if (frame.valid == 0) warnings.push_back("frame " + std::to_string(i) + ": no pixel has a measurement");
+    frames.push_back({{"index", i}, {"file", path}, {"T_world_sensor", pose_json(T)},
+                      {"pixels", {{"valid", frame.valid}, {"no_surface", frame.no_surface},
+                                  {"too_near", frame.too_near}, {"grazing", frame.grazing}}}});
+  }
+  progress.finish();
+  if (to_folder) {
+    write_tum((std::filesystem::path(output) / "trajectory.txt").string(), poses);
+    if (depth_png) {
+      const std::string path = (std::filesystem::path(output) / "intrinsics.json").string();
+      write_file_atomically(path, [&](std::ostream& out) { out << intrinsics_json(sensor.intrinsics).dump(2) << "\n"; });
+    }
+  }
+  report["results"]["frames"] = frames;
+
+  if (args.has("ground-truth")) {
+    Eigen::AlignedBox3d region;
+    if (args.has("bounds")) {
+      const auto b = parse_double_list(args.get("bounds"), "--bounds (x0,y0,z0,x1,y1,z1)", 6);
+      region = Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
+      if (!(region.min().array() < region.max().array()).all())
+        throw UsageError("--bounds: the minimum must be below the maximum on every axis");
+    } else if (scene.info.search_space) {
+      region = *scene.info.search_space;
+    } else {
+      const Eigen::AlignedBox3f b = scene.mesh.bounds();
+      region = Eigen::AlignedBox3d(b.min().cast<double>(), b.max().cast<double>());
+    }
+    const sim::GroundTruth gt(scene.mesh, *caster, resolution_m, region);
+    const std::string path = args.get("ground-truth");
+    gt.to_map().save(path);
+    const double cell_m3 = std::pow(resolution_m, 3);
+    Json containers = Json::array();
+    for (const auto& c : scene.info.containers)
+      containers.push_back({{"name", c.name}, {"box", box_json(c.box)},
+                            {"free_volume_dm3", gt.free_volume_m3(c.box) * 1e3}});
+    report["results"]["ground_truth"] = {{"file", path},
+                                         {"resolution_m", resolution_m},
+                                         {"region", box_json(region)},
+                                         {"solid_cells", gt.solid_cells()},
+                                         {"free_cells", gt.free_cells()},
+                                         {"solid_volume_m3", double(gt.solid_cells()) * cell_m3},
+                                         {"free_volume_m3", double(gt.free_cells()) * cell_m3},
+                                         {"containers", containers}};
+    if (scene.info.target) report["results"]["ground_truth"]["target"] = {{"name", scene.info.target->name},
+                                                                         {"box", box_json(scene.info.target->box)}};
+  }
+  report["warnings"] = warnings;
+  write_report(report, args.has("report") ? args.get("report") : "");
+  return 0;
+}
+
+}  // namespace fvx::cli
