@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Integration benchmark: one 640x480 Kinect frame at 2.5 cm and 4 m through fvx and through
-# OctoMap's insertPointCloud (exact and discretised), with ratios from the same run.
-# Frame: a real Kinect capture from FVX_REAL_DATA when available, else a synthetic one.
+# Benchmarks, each with its baselines measured in the same run:
+#  - integration: one 640x480 Kinect frame at 2.5 cm and 4 m through fvx and through
+#    OctoMap's insertPointCloud (exact and discretised); the frame is a real Kinect capture
+#    from FVX_REAL_DATA when available, else a synthetic one;
+#  - rendering: a 640x480 frame of a 100k-triangle scene (Embree, CGAL), and the trees
+#    against brute force on a small scene.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -15,4 +18,5 @@ if [ ! -f "$frame" ]; then
   "$build/src/fvx_make_box_room" "$tmp" 640 480 >/dev/null
   frame="$tmp/view0.pcd"
 fi
-"$build/tests/bench/bench_integrate" "$frame" "$@"
+echo "== integration" && "$build/tests/bench/bench_integrate" "$frame"
+echo "== rendering" && "$build/tests/bench/bench_render"
