@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config jq
   libpcl-dev liboctomap-dev libeigen3-dev libopencv-dev nlohmann-json3-dev
   libcgal-dev libembree-dev
   libgtest-dev libgmock-dev libbenchmark-dev

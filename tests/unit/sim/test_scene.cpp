@@ -35,7 +35,10 @@ TEST(Mesh, BadMeshesAreRefusedWithTheirName) {
   std::ofstream(dir / "points.obj") << "v 0 0 0\nv 1 0 0\n";
   std::ofstream(dir / "text.stl") << "this is not a mesh";
   std::ofstream(dir / "mesh.dae") << "<collada/>";
-  for (const char* name : {"garbage.ply", "points.obj", "text.stl", "mesh.dae", "missing.ply"}) {
+  std::ofstream(dir / "nofaces.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                        "property float y\nproperty float z\nelement face 0\n"
+                                        "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  for (const char* name : {"garbage.ply", "points.obj", "text.stl", "mesh.dae", "missing.ply", "nofaces.ply"}) {
     try {
       read_mesh(dir / name);
       ADD_FAILURE() << name << " was accepted";
