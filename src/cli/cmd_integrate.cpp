@@ -120,6 +120,7 @@ Json config_json(const Options& o, const map::OccupancyMap& map) {
               {"fine_correspondence_m", o.reg.fine_correspondence_m},
               {"fine_voxel_m", o.reg.fine_voxel_m},
               {"min_observability", o.reg.min_observability},
+              {"robust_scale_m", o.reg.robust_scale_m},
               {"max_iterations", o.reg.max_iterations},
               {"translation_epsilon_m", o.reg.translation_epsilon_m},
               {"rotation_epsilon_rad", o.reg.rotation_epsilon_rad}};
@@ -164,6 +165,7 @@ Json registration_json(const registration::Result& r) {
             {"correction", {{"translation_m", r.correction_translation_m},
                             {"rotation_deg", r.correction_rotation_deg}}}};
   j["weak_directions"] = r.weak_directions;
+  if (!r.fine_start.empty()) j["fine_start"] = r.fine_start;
   if (!r.problem.empty()) j["problem"] = r.problem;
   return j;
 }

@@ -14,12 +14,13 @@ namespace {
 
 using nlohmann::json;
 
-/// A wall 2 m in front of the sensor, seen from `x_m` to the side (PCD with VIEWPOINT).
-void write_wall_scan(const std::string& path, double x_m) {
+/// A wall 2 m in front of the sensor, seen from `x_m` to the side (PCD with VIEWPOINT). A
+/// non-zero `prior_error_deg` tilts the VIEWPOINT by that much about x: a wrong prior.
+void write_wall_scan(const std::string& path, double x_m, double prior_error_deg = 0.0) {
   std::vector<Eigen::Vector3f> points;
   for (int i = -20; i <= 20; ++i)
     for (int j = -15; j <= 15; ++j) points.emplace_back(0.05f * i, 0.05f * j, 2.0f);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T(Eigen::AngleAxisd(prior_error_deg * M_PI / 180.0, Eigen::Vector3d::UnitX()));
   T.translation() << x_m, 0, 0;
   io::write_pcd(path, points, T);
 }
@@ -129,7 +130,7 @@ TEST(Cli, RegistrationKeepsTheExactPosesOfTheSample) {
 TEST(Cli, ARegistrationThatDoesNotConvergeKeepsThePriorAndWarns) {
   const TempDir dir;
   write_wall_scan(dir / "a.pcd", 0.0);
-  write_wall_scan(dir / "b.pcd", 0.3);
+  write_wall_scan(dir / "b.pcd", 0.3, 5.0);
   const RunResult r = run_fvx(dir, "integrate -o m.ot --reg-max-iter 1 a.pcd b.pcd");
   ASSERT_EQ(r.status, 0) << r.err;
   const json report = json::parse(r.out);

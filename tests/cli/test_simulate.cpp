@@ -92,6 +92,23 @@ TEST(CliSimulate, BadInputIsRefusedOnOneLine) {
   }
 }
 
+// Two exact views of the crates scene overlap by ~80 %, and two crates' parallel walls 9 cm
+// apart alias a 9 cm slide: registration used to move the second pose by 7–9 cm.
+TEST(CliSimulate, RegistrationLeavesExactSimulatedPosesAlone) {
+  const TempDir dir;
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0.4,0.9,0.8,0,0.15 -o b.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0.4,0.9,0.8,0,0.15 --noise kinect --seed 7 -o c.pcd").status, 0);
+  const RunResult r = run_fvx(dir, "integrate -o m.ot a.pcd b.pcd c.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json scans = json::parse(r.out)["results"]["scans"];
+  for (int i = 1; i < 3; ++i) {
+    EXPECT_EQ(scans[i]["registration"]["converged"], true) << i;
+    EXPECT_LT(scans[i]["registration"]["correction"]["translation_m"].get<double>(), 0.005) << i;
+    EXPECT_LT(scans[i]["registration"]["correction"]["rotation_deg"].get<double>(), 0.2) << i;
+  }
+}
+
 TEST(CliSimulate, APoseInsideASolidIsAWarning) {
   const TempDir dir;
   // Inside the 1.5 cm x− wall of the closed crate (0.55 … 0.565).

@@ -32,6 +32,10 @@ struct Config {
   /// coarse pass by centimetres; the fine pass ignores them. Also the limit for fitness and
   /// inliers. Default 0.1; a value >= max_correspondence_m runs one pass.
   double fine_correspondence_m = 0.1;
+  /// Scale σ of the fine pass's Geman–McClure kernel, metres: residuals well beyond it
+  /// (parts of the scan the map has not seen) stop pulling. Default 0.02, above Kinect noise
+  /// at 3 m.
+  double robust_scale_m = 0.02;
   /// Downsampling voxel of the fine pass, metres; 0 disables it. At the coarse voxel, plane
   /// edges sampled by 5 cm voxels biased translations by 1–3 cm on the box-room sample; at
   /// 2.5 cm the error stayed under 3 mm. Default 0.025.
@@ -68,6 +72,8 @@ struct Result {
   /// Directions the geometry barely constrains ("translation along (1, 0, 0)"), world
   /// axes; the correction along them was dropped and the pose kept its prior there.
   std::vector<std::string> weak_directions;
+  /// Where the fine pass started from that won: "prior" or "coarse".
+  std::string fine_start;
   std::string problem;             ///< why it did not converge; empty when it did
 };
 
