@@ -191,12 +191,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-int run_integrate(int argc, char** argv) {
-  const Args args = parse_args(kIntegrateSpec, argc, argv);
-  if (args.has("help")) {
-    std::fputs(help_text(kIntegrateSpec).c_str(), stdout);
-    return 0;
-  }
+int run_integrate(const Args& args) {
   const Options o = parse(args);
 
   map::OccupancyMap map = o.map_path.empty() ? map::OccupancyMap(o.resolution_m)

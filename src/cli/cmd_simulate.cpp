@@ -126,12 +126,7 @@ void write_tum(const std::string& path, const std::vector<Eigen::Isometry3d>& po
 
 }  // namespace
 
-int run_simulate(int argc, char** argv) {
-  const Args args = parse_args(kSimulateSpec, argc, argv);
-  if (args.has("help")) {
-    std::fputs(help_text(kSimulateSpec).c_str(), stdout);
-    return 0;
-  }
+int run_simulate(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx simulate: give one scene (a mesh file or builtin:NAME), got " +
                      std::to_string(args.positional.size()));

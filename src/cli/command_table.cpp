@@ -101,7 +101,12 @@ int run(int argc, char** argv) {
   sub_argv.push_back(program.data());
   for (int i = optind + 1; i < argc; ++i) sub_argv.push_back(argv[i]);
   sub_argv.push_back(nullptr);
-  return command->run(int(sub_argv.size() - 1), sub_argv.data());
+  const Args args = parse_args(command->spec, int(sub_argv.size() - 1), sub_argv.data());
+  if (args.has("help")) {
+    std::fputs(help_text(command->spec).c_str(), stdout);
+    return 0;
+  }
+  return command->run(args);
 }
 
 }  // namespace fvx::cli

@@ -8,7 +8,8 @@ namespace fvx::cli {
 
 struct Command {
   const CommandSpec& spec;
-  int (*run)(int argc, char** argv);  ///< argv[0] is "fvx <name>"; returns the exit status
+  /// Runs the command on its parsed options (--help is handled before); returns the exit status.
+  int (*run)(const Args& args);
 };
 
 /// Every command, in the order of the pipeline (ARCHITECTURE.md §1).
@@ -22,8 +23,8 @@ std::string top_level_help();
 
 // Commands (one cmd_<name>.cpp each).
 extern const CommandSpec kIntegrateSpec;
-int run_integrate(int argc, char** argv);
+int run_integrate(const Args& args);
 extern const CommandSpec kSimulateSpec;
-int run_simulate(int argc, char** argv);
+int run_simulate(const Args& args);
 
 }  // namespace fvx::cli

@@ -33,13 +33,6 @@ double rotation_angle_deg(const Eigen::Isometry3d& T) {
   return std::abs(aa.angle()) * 180.0 / M_PI;
 }
 
-bool is_rigid(const Eigen::Isometry3d& T) {
-  const Eigen::Matrix3d R = T.linear();
-  return T.translation().allFinite() &&
-         (R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 &&
-         R.determinant() > 0.0;
-}
-
 const char* version() { return FVX_VERSION_STRING; }
 
 }  // namespace fvx

@@ -35,6 +35,14 @@ TEST(Manual, EveryOptionIsInHelpAndManPage) {
   }
 }
 
+TEST(Manual, EveryCommandHasHelp) {
+  for (const cli::Command& command : cli::commands()) {
+    bool has_help = false;
+    for (const cli::OptionSpec& option : command.spec.options) has_help |= std::string(option.name) == "help";
+    EXPECT_TRUE(has_help) << command.spec.name << " has no --help in its option table";
+  }
+}
+
 TEST(Manual, FvxPageNamesEveryCommandInTableOrder) {
   const std::string page = man_page_text("fvx.1");
   std::size_t last = 0;

@@ -20,9 +20,6 @@ Eigen::Isometry3d parse_pose(const std::string& text, const std::string& what);
 /// Angle of the rotation part in degrees, in [0, 180].
 double rotation_angle_deg(const Eigen::Isometry3d& T);
 
-/// True when `T` has an orthonormal rotation (tolerance 1e-6) and a finite translation.
-bool is_rigid(const Eigen::Isometry3d& T);
-
 /// The fvx release, e.g. "0.1.0".
 const char* version();
 
