@@ -177,6 +177,22 @@ std::vector<Eigen::Vector3f> OccupancyMap::occupied_centers() const {
   return centers;
 }
 
+std::vector<Leaf> OccupancyMap::leaves() const {
+  const auto& tree = impl_->tree;
+  std::vector<Leaf> out;
+  out.reserve(tree.getNumLeafNodes());
+  const unsigned max_depth = tree.getTreeDepth();
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    const std::uint32_t span = 1u << (max_depth - it.getDepth());
+    const octomap::OcTreeKey k = it.getKey();
+    const std::uint32_t mask = ~(span - 1u);
+    out.push_back({{std::uint16_t(k[0] & mask), std::uint16_t(k[1] & mask), std::uint16_t(k[2] & mask)},
+                   span,
+                   tree.isNodeOccupied(*it) ? VoxelState::Occupied : VoxelState::Free});
+  }
+  return out;
+}
+
 Stats OccupancyMap::stats() const {
   const auto& tree = impl_->tree;
   Stats s;

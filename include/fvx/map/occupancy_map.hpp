@@ -85,6 +85,14 @@ struct SensorModel {
   std::vector<std::string> validate() const;
 };
 
+/// A known leaf of the octree: a cube of `size_cells`³ finest cells with one state (OctoMap
+/// prunes uniform regions into one leaf).
+struct Leaf {
+  VoxelKey min_key;            ///< the finest cell at its lowest corner
+  std::uint32_t size_cells = 1;
+  VoxelState state = VoxelState::Free;
+};
+
 /// Summary of a map.
 struct Stats {
   double resolution_m = 0;
@@ -147,6 +155,9 @@ class OccupancyMap {
   std::vector<Eigen::Vector3f> occupied_centers() const;
 
   Stats stats() const;
+
+  /// Every known leaf, in the octree's order.
+  std::vector<Leaf> leaves() const;
 
   struct Impl;  ///< private; defined in src/map/tree.hpp
 

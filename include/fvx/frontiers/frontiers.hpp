@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// Stage `frontiers` (paper §IV-A): free cells with at least one unknown face-neighbour
+/// (6-connectivity; ARCHITECTURE.md §3), maintained incrementally from the map's change sets,
+/// and their clusters (union-find over 26-connected frontier cells).
+///
+/// The set holds every frontier cell of the map; the search space S filters at query time,
+/// so a search space that grows with the map (the default: the box of the known cells) does
+/// not invalidate the incremental state.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <unordered_set>
+#include <vector>
+
+#include "fvx/map/occupancy_map.hpp"
+
+namespace fvx::frontiers {
+
+/// A key packed into one integer (x | y << 16 | z << 32), for hashing.
+inline std::uint64_t pack(const map::VoxelKey& k) {
+  return std::uint64_t(k.x) | std::uint64_t(k.y) << 16 | std::uint64_t(k.z) << 32;
+}
+inline map::VoxelKey unpack(std::uint64_t p) {
+  return {std::uint16_t(p & 0xFFFF), std::uint16_t(p >> 16 & 0xFFFF), std::uint16_t(p >> 32 & 0xFFFF)};
+}
+
+/// True when `key` is free and has an unknown face-neighbour (the definition, cell by cell).
+bool is_frontier(const map::OccupancyMap& map, const map::VoxelKey& key);
+
+class FrontierSet {
+ public:
+  /// All frontier cells of `map`, from scratch. A pruned free leaf contributes only cells on
+  /// its surface: inside it every neighbour is free.
+  void rebuild(const map::OccupancyMap& map);
+  /// After `map` integrated a scan with these changes: re-examines each changed cell and its
+  /// six face-neighbours, the only cells whose status a change can alter.
+  void update(const map::OccupancyMap& map, const std::vector<map::Change>& changes);
+
+  std::size_t size() const { return cells_.size(); }
+  bool contains(const map::VoxelKey& key) const { return cells_.count(pack(key)) != 0; }
+  /// The frontier cells whose centres lie in `bounds_m` (all when empty), in key order.
+  std::vector<map::VoxelKey> cells(const map::OccupancyMap& map,
+                                   const std::optional<Eigen::AlignedBox3d>& bounds_m = std::nullopt) const;
+
+ private:
+  std::unordered_set<std::uint64_t> cells_;
+};
+
+struct Cluster {
+  int id = 0;                        ///< 0, 1, … in order of each cluster's smallest key
+  std::vector<map::VoxelKey> cells;  ///< in key order
+  Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
+  Eigen::AlignedBox3d bounds_m;      ///< of the cells' extents
+};
+
+/// Clusters of `cells` (key order) by union-find over 26-connectivity. Deterministic: the
+/// same cells give the same clusters with the same ids.
+std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells);
+
+}  // namespace fvx::frontiers

@@ -1,0 +1,129 @@
+// Frontier cells against a brute-force oracle; incremental updates against from-scratch
+// recomputation; clusters.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fvx/frontiers/frontiers.hpp"
+#include "fvx/scan/load.hpp"
+#include "test_support.hpp"
+
+namespace fvx::frontiers {
+namespace {
+
+/// Every cell of the box around the known cells, tested one by one with the definition.
+std::vector<map::VoxelKey> brute_force(const map::OccupancyMap& map) {
+  const map::Stats s = map.stats();
+  std::vector<map::VoxelKey> out;
+  if (s.empty) return out;
+  const map::VoxelKey lo = *map.key_of(s.known_min_m + Eigen::Vector3d::Constant(map.resolution_m() / 2));
+  const map::VoxelKey hi = *map.key_of(s.known_max_m - Eigen::Vector3d::Constant(map.resolution_m() / 2));
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const map::VoxelKey k{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
+        if (is_frontier(map, k)) out.push_back(k);
+      }
+  return out;  // z, y, x loops: key order
+}
+
+std::vector<Eigen::Vector3f> random_scan(std::mt19937& rng, const Eigen::Vector3f& origin, int n) {
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> radius(0.2f, 1.2f);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f d(gauss(rng), gauss(rng), gauss(rng));
+    points.push_back(origin + d.normalized() * radius(rng));
+  }
+  return points;
+}
+
+TEST(Frontiers, FromScratchEqualsBruteForceAndIncrementalOnRandomMaps) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    map::OccupancyMap map(0.1);
+    FrontierSet incremental;
+    for (int s = 0; s < 4; ++s) {
+      const Eigen::Vector3f origin(0.3f * s, 0.2f * float(seed), -0.1f * s);
+      const map::Integration change = map.integrate(random_scan(rng, origin, 300), origin, 1.0);
+      incremental.update(map, change.changes);
+      FrontierSet scratch;
+      scratch.rebuild(map);
+      const auto oracle = brute_force(map);
+      ASSERT_FALSE(oracle.empty());
+      EXPECT_EQ(scratch.cells(map), oracle) << "seed " << seed << " scan " << s;
+      EXPECT_EQ(incremental.cells(map), oracle) << "seed " << seed << " scan " << s;
+    }
+  }
+}
+
+TEST(Frontiers, APrunedFreeLeafContributesItsSurface) {
+  map::OccupancyMap map(0.1);
+  // An aligned 8³ block of free cells, pruned by OctoMap into one leaf, unknown all around.
+  for (int z = 0; z < 8; ++z)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        map.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), std::uint16_t(32768 + z)},
+                      map::VoxelState::Free);
+  ASSERT_EQ(map.leaves().size(), 1u);
+  EXPECT_EQ(map.leaves()[0].size_cells, 8u);
+  FrontierSet set;
+  set.rebuild(map);
+  EXPECT_EQ(set.size(), 8u * 8 * 8 - 6u * 6 * 6);
+  EXPECT_EQ(set.cells(map), brute_force(map));
+}
+
+TEST(Frontiers, BoundsFilterAtQueryTime) {
+  map::OccupancyMap map(0.1);
+  for (int x = 0; x < 10; ++x) map.set_state({std::uint16_t(32768 + x), 32768, 32768}, map::VoxelState::Free);
+  FrontierSet set;
+  set.rebuild(map);
+  EXPECT_EQ(set.cells(map).size(), 10u);
+  EXPECT_EQ(set.cells(map, Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0.1, 0.1))).size(), 5u);
+}
+
+TEST(Frontiers, ClustersAre26ConnectedAndNumberedByTheirSmallestKey) {
+  map::OccupancyMap map(0.1);
+  const std::vector<map::VoxelKey> cells = {
+      {10, 10, 10}, {11, 11, 11},  // diagonal neighbours: one cluster
+      {20, 10, 10},                // alone
+      {5, 10, 12},  {5, 11, 12}};  // two face neighbours, lower x
+  std::vector<map::VoxelKey> sorted = cells;
+  std::sort(sorted.begin(), sorted.end());
+  const auto clusters = cluster(map, sorted);
+  ASSERT_EQ(clusters.size(), 3u);
+  EXPECT_EQ(clusters[0].cells.size(), 2u);  // {10,10,10} has the smallest key (z = 10)
+  EXPECT_EQ(clusters[0].cells[0], (map::VoxelKey{10, 10, 10}));
+  EXPECT_EQ(clusters[1].cells.size(), 1u);
+  EXPECT_EQ(clusters[2].cells.size(), 2u);
+  EXPECT_EQ(cluster(map, sorted).size(), 3u);
+  for (std::size_t i = 0; i < clusters.size(); ++i) EXPECT_EQ(clusters[i].id, int(i));
+}
+
+// Integrating the five slambook frames one by one, the incremental set equals a from-scratch
+// computation after every frame.
+TEST(FrontiersRealData, SlambookIncrementalEqualsFromScratchAfterEveryFrame) {
+  FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
+  scan::LoadConfig load;
+  load.intrinsics = io::Intrinsics{518.0, 519.0, 325.5, 253.5, 1000.0, 640, 480};
+  load.trajectory_path = frames + "/pose.txt";
+  std::vector<std::string> paths;
+  for (int i = 1; i <= 5; ++i) paths.push_back(frames + "/depth/" + std::to_string(i) + ".pgm");
+  scan::FilterConfig filter;
+  filter.depth_max_m = 7.0;
+  map::OccupancyMap map(0.05);
+  FrontierSet incremental;
+  std::vector<std::string> warnings;
+  for (const auto& source : scan::plan_scans(paths, load).scans) {
+    scan::Scan s = scan::load_scan(source, load, warnings);
+    scan::filter(s, filter);
+    incremental.update(map, map.integrate(scan::to_world(s), s.T_world_sensor.translation().cast<float>()).changes);
+    FrontierSet scratch;
+    scratch.rebuild(map);
+    ASSERT_GT(scratch.size(), 1000u);
+    EXPECT_EQ(incremental.cells(map), scratch.cells(map)) << source.path;
+  }
+}
+
+}  // namespace
+}  // namespace fvx::frontiers
