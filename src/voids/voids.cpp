@@ -1,0 +1,214 @@
+#include "fvx/voids/voids.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "fvx/frontiers/frontiers.hpp"  // pack / unpack of keys
+
+namespace fvx::voids {
+
+using frontiers::pack;
+using frontiers::unpack;
+
+namespace {
+
+constexpr double kTolerance = 1e-6;  // metres: centres on a hull face count as inside
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+}  // namespace
+
+std::optional<std::pair<double, double>> Hull::z_range(double x, double y) const {
+  if (planes.empty()) return std::nullopt;
+  double lo = -INFINITY, hi = INFINITY;
+  for (const Eigen::Vector4d& p : planes) {
+    const double rest = p.x() * x + p.y() * y + p.w() - kTolerance;  // n·(x, y, z) + d <= tol
+    if (std::abs(p.z()) < 1e-12) {
+      if (rest > 0) return std::nullopt;
+    } else if (p.z() > 0) {
+      hi = std::min(hi, -rest / p.z());
+    } else {
+      lo = std::max(lo, -rest / p.z());
+    }
+  }
+  if (lo > hi) return std::nullopt;
+  return std::make_pair(lo, hi);
+}
+
+bool Hull::contains(const Eigen::Vector3d& p) const {
+  const auto range = z_range(p.x(), p.y());
+  return range && p.z() >= range->first && p.z() <= range->second;
+}
+
+Hull convex_hull(const std::vector<Eigen::Vector3d>& points) {
+  Hull hull;
+  if (points.size() < 4) return hull;
+  // A cloud that spans no volume (one wall, one line) has no interior: check the smallest
+  // principal extent before asking CGAL for a 3-D hull.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= double(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  covariance /= double(points.size());
+  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues()[0] < 1e-10) return hull;
+
+  std::vector<K::Point_3> cgal_points;
+  cgal_points.reserve(points.size());
+  for (const auto& p : points) cgal_points.emplace_back(p.x(), p.y(), p.z());
+  CGAL::Surface_mesh<K::Point_3> mesh;
+  CGAL::convex_hull_3(cgal_points.begin(), cgal_points.end(), mesh);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    centroid += Eigen::Vector3d(p.x(), p.y(), p.z());
+    hull.bounds_m.extend(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  }
+  centroid /= double(mesh.number_of_vertices());
+  for (const auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corner;
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+      const auto& p = mesh.point(v);
+      corner.emplace_back(p.x(), p.y(), p.z());
+    }
+    Eigen::Vector3d n = (corner[1] - corner[0]).cross(corner[2] - corner[0]);
+    if (n.norm() < 1e-15) continue;
+    n.normalize();
+    double d = -n.dot(corner[0]);
+    if (n.dot(centroid) + d > 0) {  // make the normal point outwards
+      n = -n;
+      d = -d;
+    }
+    hull.planes.emplace_back(n.x(), n.y(), n.z(), d);
+  }
+  return hull;
+}
+
+struct VoidSet::State {
+  std::unordered_set<std::uint64_t> cells;
+  std::unordered_set<std::uint64_t> occupied;  ///< the cells the hull is built from
+  std::unordered_set<std::uint64_t> vertices;  ///< occupied cells on the hull
+  Hull hull;
+};
+
+VoidSet::VoidSet() : state_(std::make_unique<State>()) {}
+VoidSet::~VoidSet() = default;
+VoidSet::VoidSet(VoidSet&&) noexcept = default;
+VoidSet& VoidSet::operator=(VoidSet&&) noexcept = default;
+
+const Hull& VoidSet::hull() const { return state_->hull; }
+std::size_t VoidSet::size() const { return state_->cells.size(); }
+bool VoidSet::contains(const map::VoxelKey& key) const { return state_->cells.count(pack(key)) != 0; }
+
+namespace {
+
+/// The hull of the occupied cells, and which of them are its vertices.
+Hull hull_of(const map::OccupancyMap& map, const std::unordered_set<std::uint64_t>& occupied,
+             std::unordered_set<std::uint64_t>& vertices) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(occupied.size());
+  for (const std::uint64_t p : occupied) points.push_back(map.center_of(unpack(p)));
+  Hull hull = convex_hull(points);
+  vertices.clear();
+  if (hull.empty()) return hull;
+  for (const std::uint64_t p : occupied) {
+    const Eigen::Vector3d c = map.center_of(unpack(p));
+    for (const Eigen::Vector4d& plane : hull.planes)
+      if (std::abs(plane.head<3>().dot(c) + plane.w()) < kTolerance) {
+        vertices.insert(p);
+        break;
+      }
+  }
+  return hull;
+}
+
+/// Cell indices (key − 32768) whose centres (k + 0.5)·R lie in [lo, hi].
+std::pair<int, int> cell_range(double lo, double hi, double R) {
+  return {int(std::ceil(lo / R - 0.5)), int(std::floor(hi / R - 0.5))};
+}
+
+/// Adds the unknown cells inside `now` but not `before`, removes those inside `before` but
+/// not `now`, column by column.
+void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now,
+            std::unordered_set<std::uint64_t>& cells) {
+  Eigen::AlignedBox3d box = now.bounds_m;
+  if (!before.empty()) box.extend(before.bounds_m);
+  if (box.isEmpty()) return;
+  const double R = map.resolution_m();
+  const auto [x0, x1] = cell_range(box.min().x(), box.max().x(), R);
+  const auto [y0, y1] = cell_range(box.min().y(), box.max().y(), R);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const double cx = (x + 0.5) * R, cy = (y + 0.5) * R;
+      const auto r_now = now.z_range(cx, cy), r_before = before.z_range(cx, cy);
+      std::pair<int, int> in_now{1, 0}, in_before{1, 0};
+      if (r_now) in_now = cell_range(r_now->first, r_now->second, R);
+      if (r_before) in_before = cell_range(r_before->first, r_before->second, R);
+      auto key = [&](int z) {
+        return map::VoxelKey{std::uint16_t(x + 32768), std::uint16_t(y + 32768), std::uint16_t(z + 32768)};
+      };
+      for (int z = in_now.first; z <= in_now.second; ++z) {
+        if (z >= in_before.first && z <= in_before.second) continue;
+        if (map.state(key(z)) == map::VoxelState::Unknown) cells.insert(pack(key(z)));
+      }
+      for (int z = in_before.first; z <= in_before.second; ++z)
+        if (z < in_now.first || z > in_now.second) cells.erase(pack(key(z)));
+    }
+  }
+}
+
+}  // namespace
+
+void VoidSet::rebuild(const map::OccupancyMap& map) {
+  State& s = *state_;
+  s = State{};
+  for (const map::Leaf& leaf : map.leaves()) {
+    if (leaf.state != map::VoxelState::Occupied) continue;
+    for (std::uint32_t z = 0; z < leaf.size_cells; ++z)
+      for (std::uint32_t y = 0; y < leaf.size_cells; ++y)
+        for (std::uint32_t x = 0; x < leaf.size_cells; ++x)
+          s.occupied.insert(pack({std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
+                                  std::uint16_t(leaf.min_key.z + z)}));
+  }
+  s.hull = hull_of(map, s.occupied, s.vertices);
+  rescan(map, Hull{}, s.hull, s.cells);
+}
+
+void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
+  State& s = *state_;
+  bool hull_changes = false;
+  for (const map::Change& c : changes) {
+    const std::uint64_t p = pack(c.key);
+    if (c.after != map::VoxelState::Unknown) s.cells.erase(p);
+    if (c.after == map::VoxelState::Occupied && c.before != map::VoxelState::Occupied) {
+      s.occupied.insert(p);
+      hull_changes |= !s.hull.contains(map.center_of(c.key));
+    } else if (c.before == map::VoxelState::Occupied && c.after != map::VoxelState::Occupied) {
+      s.occupied.erase(p);
+      hull_changes |= s.vertices.count(p) != 0;  // a vertex left: the hull may shrink
+    }
+  }
+  if (!hull_changes) return;
+  const Hull before = s.hull;
+  s.hull = hull_of(map, s.occupied, s.vertices);
+  rescan(map, before, s.hull, s.cells);
+}
+
+std::vector<map::VoxelKey> VoidSet::cells(const map::OccupancyMap& map,
+                                          const std::optional<Eigen::AlignedBox3d>& bounds_m) const {
+  std::vector<map::VoxelKey> out;
+  out.reserve(state_->cells.size());
+  for (const std::uint64_t p : state_->cells) {
+    const map::VoxelKey k = unpack(p);
+    if (!bounds_m || bounds_m->contains(map.center_of(k))) out.push_back(k);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace fvx::voids

@@ -1,0 +1,124 @@
+// Void cells against a brute-force oracle; incremental updates against from-scratch;
+// degenerate clouds.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fvx/scan/load.hpp"
+#include "fvx/voids/voids.hpp"
+#include "test_support.hpp"
+
+namespace fvx::voids {
+namespace {
+
+/// Every cell of the hull's box, tested one by one: unknown and inside the hull.
+std::vector<map::VoxelKey> brute_force(const map::OccupancyMap& map, const Hull& hull) {
+  std::vector<map::VoxelKey> out;
+  if (hull.empty()) return out;
+  const double R = map.resolution_m();
+  const map::VoxelKey lo = *map.key_of(hull.bounds_m.min() - Eigen::Vector3d::Constant(R));
+  const map::VoxelKey hi = *map.key_of(hull.bounds_m.max() + Eigen::Vector3d::Constant(R));
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const map::VoxelKey k{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
+        if (map.state(k) == map::VoxelState::Unknown && hull.contains(map.center_of(k))) out.push_back(k);
+      }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> occupied_centres(const map::OccupancyMap& map) {
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& c : map.occupied_centers()) out.push_back(c.cast<double>());
+  return out;
+}
+
+std::vector<Eigen::Vector3f> random_scan(std::mt19937& rng, const Eigen::Vector3f& origin, int n) {
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> radius(0.3f, 1.0f);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f d(gauss(rng), gauss(rng), gauss(rng));
+    points.push_back(origin + d.normalized() * radius(rng));
+  }
+  return points;
+}
+
+TEST(Hull, ContainsEveryPointAndEveryFaceTouchesThem) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 500; ++i) points.emplace_back(u(rng), u(rng), 0.5 * u(rng));
+  const Hull hull = convex_hull(points);
+  ASSERT_FALSE(hull.empty());
+  for (const auto& p : points) EXPECT_TRUE(hull.contains(p));
+  EXPECT_FALSE(hull.contains({1.1, 0, 0}));
+  for (const Eigen::Vector4d& plane : hull.planes) {
+    int touching = 0;
+    for (const auto& p : points) touching += std::abs(plane.head<3>().dot(p) + plane.w()) < 1e-9;
+    EXPECT_GE(touching, 3);
+  }
+}
+
+TEST(Hull, FlatOrTinyCloudsHaveNoInterior) {
+  EXPECT_TRUE(convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}).empty());
+  EXPECT_TRUE(convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5, 0.2, 0}}).empty());  // a plane
+  EXPECT_FALSE(convex_hull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}).empty());
+}
+
+TEST(Voids, FromScratchEqualsBruteForceAndIncrementalOnRandomMaps) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    map::OccupancyMap map(0.1);
+    VoidSet incremental;
+    for (int s = 0; s < 4; ++s) {
+      const Eigen::Vector3f origin(0.25f * s, 0.1f * float(seed), 0.05f * s);
+      incremental.update(map, map.integrate(random_scan(rng, origin, 200), origin, 0.9).changes);
+      VoidSet scratch;
+      scratch.rebuild(map);
+      const auto oracle = brute_force(map, convex_hull(occupied_centres(map)));
+      ASSERT_FALSE(oracle.empty()) << "seed " << seed << " scan " << s;
+      EXPECT_EQ(scratch.cells(map), oracle) << "seed " << seed << " scan " << s;
+      EXPECT_EQ(incremental.cells(map), oracle) << "seed " << seed << " scan " << s;
+    }
+  }
+}
+
+TEST(Voids, AMapWithoutVolumeHasNoVoids) {
+  map::OccupancyMap map(0.1);
+  VoidSet set;
+  set.rebuild(map);
+  EXPECT_EQ(set.size(), 0u);  // no occupied cells
+  for (int x = 0; x < 10; ++x)
+    for (int y = 0; y < 10; ++y) map.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), 32768},
+                                                map::VoxelState::Occupied);
+  set.rebuild(map);
+  EXPECT_TRUE(set.hull().empty());  // one flat wall
+  EXPECT_EQ(set.size(), 0u);
+}
+
+TEST(VoidsRealData, SlambookIncrementalEqualsFromScratchAfterEveryFrame) {
+  FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
+  scan::LoadConfig load;
+  load.intrinsics = io::Intrinsics{518.0, 519.0, 325.5, 253.5, 1000.0, 640, 480};
+  load.trajectory_path = frames + "/pose.txt";
+  std::vector<std::string> paths;
+  for (int i = 1; i <= 5; ++i) paths.push_back(frames + "/depth/" + std::to_string(i) + ".pgm");
+  scan::FilterConfig filter;
+  filter.depth_max_m = 7.0;
+  map::OccupancyMap map(0.05);
+  VoidSet incremental;
+  std::vector<std::string> warnings;
+  for (const auto& source : scan::plan_scans(paths, load).scans) {
+    scan::Scan s = scan::load_scan(source, load, warnings);
+    scan::filter(s, filter);
+    incremental.update(map, map.integrate(scan::to_world(s), s.T_world_sensor.translation().cast<float>()).changes);
+    VoidSet scratch;
+    scratch.rebuild(map);
+    ASSERT_GT(scratch.size(), 10000u);
+    EXPECT_EQ(incremental.cells(map), scratch.cells(map)) << source.path;
+  }
+}
+
+}  // namespace
+}  // namespace fvx::voids
