@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// Stage `frontier_voids` (paper §IV-B): each void cluster paired with the frontier clusters
+/// that touch it — a frontier cell face- or edge-adjacent (18-neighbourhood) to one of the
+/// void's cells — with utility u_i = N_i·R³, the void's volume. A void no frontier touches is
+/// enclosed: nothing can be seen into it yet.
+#include <vector>
+
+#include "fvx/frontiers/frontiers.hpp"
+#include "fvx/voids/clusters.hpp"
+
+namespace fvx::frontier_voids {
+
+struct FrontierVoid {
+  int void_id = 0;
+  std::vector<int> frontier_ids;  ///< ascending
+  double utility_m3 = 0;          ///< u_i = N_i·R³
+  bool enclosed() const { return frontier_ids.empty(); }
+};
+
+/// One entry per void cluster, in void id order.
+std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidCluster>& voids,
+                                              const std::vector<frontiers::Cluster>& frontier_clusters);
+
+/// Utility in dm³ (1 dm³ = 10⁻³ m³): the unit of the paper's tables.
+inline double to_dm3(double m3) { return m3 * 1000.0; }
+
+}  // namespace fvx::frontier_voids

@@ -1,0 +1,88 @@
+// Void clusters: Eq. 2 on shapes with known scores; every cell in exactly one cluster;
+// determinism; frontier-void pairing and utility.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/voids/clusters.hpp"
+
+namespace fvx::voids {
+namespace {
+
+std::vector<map::VoxelKey> box_cells(int x0, int y0, int z0, int nx, int ny, int nz) {
+  std::vector<map::VoxelKey> cells;
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x)
+        cells.push_back({std::uint16_t(32768 + x0 + x), std::uint16_t(32768 + y0 + y), std::uint16_t(32768 + z0 + z)});
+  return cells;
+}
+
+TEST(VoidClusters, AFilledBoxIsOneClusterWithTheBoxScore) {
+  const map::OccupancyMap map(0.05);
+  auto cells = box_cells(0, 0, 0, 12, 8, 5);
+  std::sort(cells.begin(), cells.end());
+  const auto clusters = cluster_voids(map, cells, ClusterConfig{});
+  ASSERT_EQ(clusters.size(), 1u);
+  const VoidCluster& c = clusters[0];
+  EXPECT_EQ(c.cells.size(), 480u);
+  EXPECT_NEAR(c.fit_score, 1.0 / (4.0 / 3.0 * M_PI * std::pow(5.0 / 12.0, 1.5)), 1e-9);  // 0.887 for any box
+  EXPECT_NEAR(c.volume_m3, 480 * 0.05 * 0.05 * 0.05, 1e-12);
+  EXPECT_TRUE(c.mean_m.isApprox(Eigen::Vector3d(0.3, 0.2, 0.125), 1e-9));
+  // The longest axis is x: a = sqrt(5 · L²/12) with L = 0.6 m.
+  EXPECT_NEAR(c.semi_axes_m.maxCoeff(), std::sqrt(5.0 * 0.36 / 12.0), 1e-9);
+  for (const auto& corner : c.corners()) EXPECT_TRUE(corner.allFinite());
+}
+
+TEST(VoidClusters, TwoBoxesJoinedByALineSplitAndEveryCellIsInOneCluster) {
+  const map::OccupancyMap map(0.05);
+  auto cells = box_cells(0, 0, 0, 6, 6, 6);
+  const auto second = box_cells(20, 0, 0, 6, 6, 6);
+  cells.insert(cells.end(), second.begin(), second.end());
+  for (int x = 6; x < 20; ++x) cells.push_back({std::uint16_t(32768 + x), 32768 + 2, 32768 + 2});  // a thin bridge
+  std::sort(cells.begin(), cells.end());
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    ClusterConfig config;
+    config.seed = seed;
+    const auto clusters = cluster_voids(map, cells, config);
+    EXPECT_GE(clusters.size(), 2u) << "a dumbbell is not one ellipsoid";
+    std::set<std::tuple<int, int, int>> seen;
+    std::size_t total = 0;
+    for (const auto& c : clusters) {
+      EXPECT_GE(c.fit_score, config.min_fit_score);
+      for (const auto& k : c.cells) seen.insert({k.x, k.y, k.z});
+      total += c.cells.size();
+    }
+    EXPECT_EQ(total, cells.size()) << "no cell twice";
+    EXPECT_EQ(seen.size(), cells.size()) << "every cell once";
+    const auto again = cluster_voids(map, cells, config);
+    ASSERT_EQ(again.size(), clusters.size());
+    for (std::size_t i = 0; i < again.size(); ++i) EXPECT_EQ(again[i].cells, clusters[i].cells);
+  }
+}
+
+TEST(FrontierVoids, PairingByFaceOrEdgeAdjacencyAndUtility) {
+  const map::OccupancyMap map(0.025);
+  auto cells = box_cells(0, 0, 0, 4, 4, 4);
+  std::sort(cells.begin(), cells.end());
+  const auto voids = cluster_voids(map, cells, ClusterConfig{});
+  ASSERT_EQ(voids.size(), 1u);
+  frontiers::Cluster face, edge, corner;
+  face.id = 0;
+  face.cells = {{32768 + 4, 32768 + 1, 32768 + 1}};  // touches the x+ face
+  edge.id = 1;
+  edge.cells = {{32768 - 1, 32768 - 1, 32768 + 2}};  // touches an edge
+  corner.id = 2;
+  corner.cells = {{32768 + 4, 32768 + 4, 32768 + 4}};  // only a corner: not paired
+  const auto pairs = frontier_voids::pair_frontier_voids(voids, {face, edge, corner});
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].frontier_ids, (std::vector<int>{0, 1}));
+  EXPECT_FALSE(pairs[0].enclosed());
+  // Utility in dm³ = cells × R³ × 1000: 64 cells at 2.5 cm = 1.0 dm³ (the paper's 1245 → 19.45).
+  EXPECT_DOUBLE_EQ(frontier_voids::to_dm3(pairs[0].utility_m3), 64 * 0.025 * 0.025 * 0.025 * 1000);
+  EXPECT_TRUE(frontier_voids::pair_frontier_voids(voids, {corner})[0].enclosed());
+}
+
+}  // namespace
+}  // namespace fvx::voids
