@@ -14,6 +14,8 @@ namespace fvx::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {kIntegrateSpec, run_integrate},
+      {kFrontiersSpec, run_frontiers},
+      {kVoidsSpec, run_voids},
       {kSimulateSpec, run_simulate},
   };
   return table;

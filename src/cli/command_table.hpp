@@ -24,6 +24,10 @@ std::string top_level_help();
 // Commands (one cmd_<name>.cpp each).
 extern const CommandSpec kIntegrateSpec;
 int run_integrate(const Args& args);
+extern const CommandSpec kFrontiersSpec;
+int run_frontiers(const Args& args);
+extern const CommandSpec kVoidsSpec;
+int run_voids(const Args& args);
 extern const CommandSpec kSimulateSpec;
 int run_simulate(const Args& args);
 

@@ -36,4 +36,31 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
   return out;
 }
 
+Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
+                 const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
+                 const voids::ClusterConfig& config) {
+  Analysis a;
+  const map::Stats stats = map.stats();
+  if (bounds_m) {
+    a.bounds_m = *bounds_m;
+  } else if (!stats.empty) {
+    a.bounds_m = Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
+  }
+  if (stats.empty) a.warnings.push_back("the map is empty: no frontiers and no voids");
+  else if (stats.free_leaves == 0) a.warnings.push_back("the map has no free cells: no frontiers");
+  if (void_set && !stats.empty && stats.occupied_leaves == 0)
+    a.warnings.push_back("the map has no occupied cells: no hull, no voids");
+  else if (void_set && !stats.empty && void_set->hull().empty())
+    a.warnings.push_back("the occupied cells span no volume (fewer than four, or flat): no hull, no voids");
+  if (bounds_m && !stats.empty && !bounds_m->intersects(Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m)))
+    a.warnings.push_back("the search space holds no known cell");
+  a.frontier_cells = frontier_set.cells(map, a.bounds_m);
+  a.frontier_clusters = frontiers::cluster(map, a.frontier_cells);
+  if (!void_set) return a;
+  a.void_cells = void_set->cells(map, a.bounds_m);
+  a.void_clusters = voids::cluster_voids(map, a.void_cells, config);
+  a.frontier_voids = pair_frontier_voids(a.void_clusters, a.frontier_clusters);
+  return a;
+}
+
 }  // namespace fvx::frontier_voids

@@ -4,10 +4,13 @@
 /// that touch it — a frontier cell face- or edge-adjacent (18-neighbourhood) to one of the
 /// void's cells — with utility u_i = N_i·R³, the void's volume. A void no frontier touches is
 /// enclosed: nothing can be seen into it yet.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "fvx/frontiers/frontiers.hpp"
 #include "fvx/voids/clusters.hpp"
+#include "fvx/voids/voids.hpp"
 
 namespace fvx::frontier_voids {
 
@@ -21,6 +24,25 @@ struct FrontierVoid {
 /// One entry per void cluster, in void id order.
 std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidCluster>& voids,
                                               const std::vector<frontiers::Cluster>& frontier_clusters);
+
+/// Everything §IV-A/B computes from a map, within the search space S.
+struct Analysis {
+  Eigen::AlignedBox3d bounds_m;                       ///< S
+  std::vector<map::VoxelKey> frontier_cells;          ///< in S, key order
+  std::vector<frontiers::Cluster> frontier_clusters;
+  std::vector<map::VoxelKey> void_cells;              ///< in S, key order
+  std::vector<voids::VoidCluster> void_clusters;
+  std::vector<FrontierVoid> frontier_voids;           ///< one per void cluster
+  std::vector<std::string> warnings;                  ///< why a result is empty
+};
+
+/// Clusters and pairs the current frontier and void sets within `bounds_m` (default: the
+/// box of the map's known cells); without a void set (nullptr), frontiers only. Empty
+/// results come with a warning saying why (no free cells, no occupied cells, a flat hull,
+/// bounds without known cells).
+Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
+                 const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
+                 const voids::ClusterConfig& config);
 
 /// Utility in dm³ (1 dm³ = 10⁻³ m³): the unit of the paper's tables.
 inline double to_dm3(double m3) { return m3 * 1000.0; }

@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// Outputs people look at: coloured point clouds (PLY or PCD, for pcl_viewer, CloudCompare,
+/// MeshLab), triangle meshes (PLY) and orthographic pictures of cells (PNG, like the paper's
+/// Figures 2–4). Every file is written atomically.
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fvx::io {
+
+using Rgb = std::array<std::uint8_t, 3>;
+
+/// Points with a colour each, as binary PLY (x y z red green blue) or PCD (x y z rgb),
+/// chosen by extension; FileError for another extension.
+void write_colored_cloud(const std::string& path, const std::vector<Eigen::Vector3f>& points,
+                         const std::vector<Rgb>& colors);
+
+/// A triangle mesh with a colour per vertex, as binary PLY.
+void write_ply_mesh(const std::string& path, const std::vector<Eigen::Vector3f>& vertices,
+                    const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Rgb>& colors);
+
+/// Cells drawn as squares seen from above (looking down −z, x to the right, y up), scaled to
+/// fit `width_px`: layers in order, each over the previous ones (so voids inside boxes show),
+/// and within a layer the highest cells on top. A legend names the layers.
+struct PictureLayer {
+  std::string name;
+  Rgb color;
+  std::vector<Eigen::Vector3d> centers_m;
+};
+void write_top_view_png(const std::string& path, double cell_m, const std::vector<PictureLayer>& layers,
+                        int width_px = 900);
+
+/// A colour per cluster id, distinct for neighbours, stable across runs.
+Rgb cluster_color(int id);
+
+}  // namespace fvx::io

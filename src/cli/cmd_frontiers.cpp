@@ -1,0 +1,46 @@
+// fvx frontiers — a map → its frontier cells and clusters (paper §IV-A).
+#include "analysis_output.hpp"
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kFrontiersSpec = {
+    "frontiers",
+    "MAP.bt|MAP.ot [-o REPORT.json] [options]",
+    "a map's frontier cells (free next to unknown) and their clusters",
+    {
+        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
+        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)"},
+        {"cloud", 0, "FILE", "frontier cells as a coloured cloud, .ply or .pcd (red)"},
+        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
+        {"picture", 0, "FILE.png", "a top view of occupied (grey) and frontier (red) cells"},
+        {"help", 'h', nullptr, "show this help"},
+    }};
+
+int run_frontiers(const Args& args) {
+  if (args.positional.size() != 1)
+    throw UsageError("fvx frontiers: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
+  const auto bounds = parse_bounds(args);
+  const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
+  frontiers::FrontierSet frontier_set;
+  frontier_set.rebuild(map);
+  frontier_voids::Analysis a = frontier_voids::analyse(map, frontier_set, nullptr, bounds, voids::ClusterConfig{});
+  if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, false, args.has("by-cluster"));
+  if (args.has("picture")) write_picture(args.get("picture"), map, a, false);
+
+  Json report = new_report("frontiers");
+  report["config"] = {{"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
+                      {"definition", "free cells with an unknown face-neighbour; clusters 26-connected"}};
+  report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", map.resolution_m()}};
+  report["results"] = {{"bounds_m", bounds_json(a.bounds_m)},
+                       {"frontier_cells", a.frontier_cells.size()},
+                       {"frontier_clusters", frontier_clusters_json(a.frontier_clusters)}};
+  if (a.frontier_cells.empty() && a.warnings.empty()) a.warnings.push_back("no frontier cell in the search space");
+  report["warnings"] = a.warnings;
+  write_report(report, args.has("output") ? args.get("output") : "");
+  return 0;
+}
+
+}  // namespace fvx::cli

@@ -1,0 +1,73 @@
+// fvx voids — a map → void clusters (ellipsoids), frontier clusters and frontier-voids with
+// their utility (paper §IV-B).
+#include <numeric>
+
+#include "analysis_output.hpp"
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kVoidsSpec = {
+    "voids",
+    "MAP.bt|MAP.ot [-o REPORT.json] [options]",
+    "a map's voids (unknown inside the hull), their ellipsoids, and frontier-voids with utility",
+    {
+        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
+        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)"},
+        {"min-fit-score", 0, "S", "region growing keeps a cluster's fit score (Eq. 2) at or above S "
+                                  "(default 0.7)"},
+        {"seed", 0, "N", "order of the region-growing seeds (default 1)"},
+        {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd"},
+        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
+        {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh"},
+        {"picture", 0, "FILE.png", "a top view of occupied (grey), frontier (red) and void (violet) cells"},
+        {"help", 'h', nullptr, "show this help"},
+    }};
+
+int run_voids(const Args& args) {
+  if (args.positional.size() != 1)
+    throw UsageError("fvx voids: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
+  const auto bounds = parse_bounds(args);
+  voids::ClusterConfig config;
+  config.min_fit_score = args.number("min-fit-score", config.min_fit_score, 0.0, 1.0, true);
+  config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
+  frontiers::FrontierSet frontier_set;
+  frontier_set.rebuild(map);
+  voids::VoidSet void_set;
+  void_set.rebuild(map);
+  frontier_voids::Analysis a = frontier_voids::analyse(map, frontier_set, &void_set, bounds, config);
+  if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
+  if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);
+  if (args.has("picture")) write_picture(args.get("picture"), map, a, true);
+
+  const double R = map.resolution_m();
+  Json report = new_report("voids");
+  report["config"] = {{"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
+                      {"min_fit_score", config.min_fit_score},
+                      {"seed", config.seed},
+                      {"definition", "voids: unknown cells inside the convex hull of the occupied cell "
+                                     "centres; frontier-voids: frontier clusters face- or edge-adjacent"}};
+  report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", R}};
+  const std::size_t paired_cells = std::accumulate(
+      a.frontier_voids.begin(), a.frontier_voids.end(), std::size_t(0), [&](std::size_t n, const auto& fv) {
+        return n + (fv.enclosed() ? 0 : a.void_clusters[std::size_t(fv.void_id)].cells.size());
+      });
+  report["results"] = {{"bounds_m", bounds_json(a.bounds_m)},
+                       {"hull_faces", void_set.hull().planes.size()},
+                       {"void_cells", a.void_cells.size()},
+                       {"void_volume_dm3", frontier_voids::to_dm3(double(a.void_cells.size()) * R * R * R)},
+                       {"void_clusters", void_clusters_json(a.void_clusters)},
+                       {"frontier_cells", a.frontier_cells.size()},
+                       {"frontier_clusters", frontier_clusters_json(a.frontier_clusters)},
+                       {"frontier_voids", frontier_voids_json(a.frontier_voids, a.void_clusters)},
+                       {"observable_void_cells", paired_cells}};
+  if (a.void_cells.empty() && a.warnings.empty()) a.warnings.push_back("no void cell in the search space");
+  report["warnings"] = a.warnings;
+  write_report(report, args.has("output") ? args.get("output") : "");
+  return 0;
+}
+
+}  // namespace fvx::cli

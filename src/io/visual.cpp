@@ -1,0 +1,131 @@
+#include "fvx/io/visual.hpp"
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <ostream>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::io {
+
+void write_colored_cloud(const std::string& path, const std::vector<Eigen::Vector3f>& points,
+                         const std::vector<Rgb>& colors) {
+  FVX_ASSERT(points.size() == colors.size(), "a colour per point");
+  const std::string ext = lowercase_extension(path);
+  if (ext == ".ply") {
+    write_file_atomically(path, [&](std::ostream& out) {
+      out << "ply\nformat binary_little_endian 1.0\ncomment written by fvx\nelement vertex " << points.size()
+          << "\nproperty float x\nproperty float y\nproperty float z\n"
+             "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
+        out.write(reinterpret_cast<const char*>(colors[i].data()), 3);
+      }
+    });
+  } else if (ext == ".pcd") {
+    pcl::PointCloud<pcl::PointXYZRGB> cloud;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      pcl::PointXYZRGB p(colors[i][0], colors[i][1], colors[i][2]);
+      p.x = points[i].x(), p.y = points[i].y(), p.z = points[i].z();
+      cloud.push_back(p);
+    }
+    write_path_atomically(path, [&](const std::string& temp) {
+      if (cloud.empty()) {  // PCL refuses to write an empty cloud; an empty result is valid
+        write_file_atomically(temp, [](std::ostream& out) {
+          out << "# .PCD v0.7 - written by fvx\nVERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                 "COUNT 1 1 1 1\nWIDTH 0\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 0\nDATA ascii\n";
+        });
+      } else if (pcl::io::savePCDFileBinary(temp, cloud) != 0) {
+        throw FileError(path, "cannot write PCD");
+      }
+    });
+  } else {
+    throw FileError(path, "unknown cloud format '" + ext + "'; expected .ply or .pcd");
+  }
+}
+
+void write_ply_mesh(const std::string& path, const std::vector<Eigen::Vector3f>& vertices,
+                    const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Rgb>& colors) {
+  FVX_ASSERT(vertices.size() == colors.size(), "a colour per vertex");
+  if (lowercase_extension(path) != ".ply") throw FileError(path, "meshes are written as .ply");
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "ply\nformat binary_little_endian 1.0\ncomment written by fvx\nelement vertex " << vertices.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\n"
+           "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face "
+        << triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      out.write(reinterpret_cast<const char*>(vertices[i].data()), 3 * sizeof(float));
+      out.write(reinterpret_cast<const char*>(colors[i].data()), 3);
+    }
+    for (const auto& t : triangles) {
+      const unsigned char three = 3;
+      const std::int32_t index[3] = {std::int32_t(t[0]), std::int32_t(t[1]), std::int32_t(t[2])};
+      out.write(reinterpret_cast<const char*>(&three), 1);
+      out.write(reinterpret_cast<const char*>(index), sizeof index);
+    }
+  });
+}
+
+void write_top_view_png(const std::string& path, double cell_m, const std::vector<PictureLayer>& layers,
+                        int width_px) {
+  if (lowercase_extension(path) != ".png") throw FileError(path, "pictures are written as .png");
+  Eigen::AlignedBox2d box;
+  for (const auto& layer : layers)
+    for (const auto& c : layer.centers_m) box.extend(c.head<2>());
+  if (box.isEmpty()) box = Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
+  box.min().array() -= cell_m;
+  box.max().array() += cell_m;
+  const double scale = width_px / std::max(box.sizes().x(), 1e-9);  // pixels per metre
+  const int legend_px = 24 * int(layers.size()) + 12;
+  const int height_px = int(std::ceil(box.sizes().y() * scale)) + legend_px;
+  cv::Mat image(height_px, width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  // Layer by layer (the later ones, such as voids hidden inside boxes, over the earlier), and
+  // within a layer lowest first, so that what is seen from above ends on top.
+  struct Square {
+    double z;
+    std::size_t layer;
+    Eigen::Vector2d xy;
+  };
+  std::vector<Square> squares;
+  for (std::size_t l = 0; l < layers.size(); ++l)
+    for (const auto& c : layers[l].centers_m) squares.push_back({c.z(), l, c.head<2>()});
+  std::stable_sort(squares.begin(), squares.end(), [](const Square& a, const Square& b) {
+    return a.layer != b.layer ? a.layer < b.layer : a.z < b.z;
+  });
+  const int side = std::max(1, int(std::round(cell_m * scale)));
+  for (const Square& s : squares) {
+    const Rgb& rgb = layers[s.layer].color;
+    const int u = int((s.xy.x() - cell_m / 2 - box.min().x()) * scale);
+    const int v = int((box.max().y() - s.xy.y() - cell_m / 2) * scale) + legend_px;
+    cv::rectangle(image, cv::Rect(u, v, side, side), cv::Scalar(rgb[2], rgb[1], rgb[0]), cv::FILLED);
+  }
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    const Rgb& rgb = layers[l].color;
+    const int y = 8 + 24 * int(l);
+    cv::rectangle(image, cv::Rect(10, y, 16, 16), cv::Scalar(rgb[2], rgb[1], rgb[0]), cv::FILLED);
+    cv::putText(image, layers[l].name + " (" + std::to_string(layers[l].centers_m.size()) + " cells)",
+                cv::Point(34, y + 14), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
+  }
+  write_path_atomically(path, [&](const std::string& temp) {
+    if (!cv::imwrite(temp, image)) throw FileError(path, "cannot write the PNG");
+  });
+}
+
+Rgb cluster_color(int id) {
+  // Golden-angle hues: neighbouring ids differ, and the same id always gets the same colour.
+  const double hue = std::fmod(id * 137.508, 360.0);
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue / 2.0, 200, 230)), bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
+  return {c[2], c[1], c[0]};
+}
+
+}  // namespace fvx::io

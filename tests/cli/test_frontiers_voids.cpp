@@ -1,0 +1,97 @@
+// fvx frontiers and fvx voids as users run them: reports, files people open, bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "fvx/io/cloud_file.hpp"
+
+namespace fvx::test {
+namespace {
+
+using nlohmann::json;
+
+/// A map of the crates scene seen from two views, built with the binary itself.
+void make_crates_map(const TempDir& dir) {
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0.5,0.8,0.8,0,0.15 -o b.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "integrate -o map.ot -r 0.025 --no-register a.pcd b.pcd").status, 0);
+}
+
+TEST(CliFrontiersVoids, ReportsAndFilesPeopleOpen) {
+  const TempDir dir;
+  make_crates_map(dir);
+  const std::string bounds = "--bounds 0.4,-0.8,0.0,1.2,0.75,0.55";
+  RunResult r = run_fvx(dir, "frontiers map.ot " + bounds + " -o f.json --cloud f.ply --picture f.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  const json f = json::parse(slurp(dir / "f.json"));
+  EXPECT_EQ(f["command"], "frontiers");
+  EXPECT_GT(f["results"]["frontier_cells"].get<int>(), 100);
+  EXPECT_EQ(io::read_cloud(dir / "f.ply").points.size(), f["results"]["frontier_cells"].get<std::size_t>());
+  EXPECT_GT(std::filesystem::file_size(dir / "f.png"), 1000u);
+
+  r = run_fvx(dir, "voids map.ot " + bounds + " --cloud v.pcd --by-cluster --ellipsoids e.ply --picture v.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json v = json::parse(r.out);
+  const json& res = v["results"];
+  const double R = 0.025;
+  EXPECT_GT(res["void_cells"].get<int>(), 1000);
+  std::size_t clustered = 0;
+  for (const auto& c : res["void_clusters"]) clustered += c["cells"].get<std::size_t>();
+  EXPECT_EQ(clustered, res["void_cells"].get<std::size_t>());
+  ASSERT_EQ(res["frontier_voids"].size(), res["void_clusters"].size());
+  for (const auto& fv : res["frontier_voids"]) {
+    // Utility in dm³ = void cells × R³ × 1000, exactly.
+    EXPECT_EQ(fv["utility_dm3"].get<double>(), double(fv["void_cells"].get<std::size_t>()) * R * R * R * 1000.0);
+    EXPECT_EQ(fv["enclosed"].get<bool>(), fv["frontier_ids"].empty());
+  }
+  EXPECT_EQ(io::read_cloud(dir / "v.pcd").points.size(),
+            res["void_cells"].get<std::size_t>() + res["frontier_cells"].get<std::size_t>());
+  EXPECT_GT(std::filesystem::file_size(dir / "e.ply"), 1000u);
+  // Deterministic: the same map gives the same report.
+  EXPECT_EQ(run_fvx(dir, "voids map.ot " + bounds).out, run_fvx(dir, "voids map.ot " + bounds).out);
+}
+
+TEST(CliFrontiersVoidsRealData, OccupiedOnlyMapIsAValidEmptyResult) {
+  FVX_REAL_DATA_OR_SKIP(path, "octomap-maps/octomap_tutor/sample.bt");
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "frontiers " + path);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["results"]["frontier_cells"], 0);
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  EXPECT_NE(j["warnings"][0].get<std::string>().find("no free cells"), std::string::npos);
+}
+
+TEST(CliFrontiersVoids, BadInputIsRefusedOnOneLine) {
+  const TempDir dir;
+  std::ofstream(dir / "text.ot") << "not a map\n";
+  const char* cases[][3] = {
+      {"voids missing.bt", "1", "missing.bt"},
+      {"voids text.ot", "1", "text.ot"},
+      {"frontiers", "2", "one map"},
+      {"voids text.ot --bounds 1,1,1,0,0,0", "2", "--bounds"},
+      {"voids text.ot --min-fit-score 0", "2", "--min-fit-score"},
+  };
+  for (const auto& c : cases) {
+    const RunResult r = run_fvx(dir, c[0]);
+    EXPECT_EQ(r.status, std::stoi(c[1])) << c[0] << ": " << r.err;
+    EXPECT_EQ(line_count(r.err), 1u) << c[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(c[2]), std::string::npos) << c[0] << ": " << r.err;
+  }
+}
+
+TEST(CliFrontiersVoids, BoundsThatExcludeEverythingGiveAnEmptyResultAndAWarning) {
+  const TempDir dir;
+  make_crates_map(dir);
+  const RunResult r = run_fvx(dir, "voids map.ot --bounds 10,10,10,11,11,11");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["results"]["void_cells"], 0);
+  EXPECT_EQ(j["results"]["frontier_cells"], 0);
+  EXPECT_FALSE(j["warnings"].empty());
+}
+
+}  // namespace
+}  // namespace fvx::test
