@@ -4,7 +4,9 @@
 #    OctoMap's insertPointCloud (exact and discretised); the frame is a real Kinect capture
 #    from FVX_REAL_DATA when available, else a synthetic one;
 #  - rendering: a 640x480 frame of a 100k-triangle scene (Embree, CGAL), and the trees
-#    against brute force on a small scene.
+#    against brute force on a small scene;
+#  - frontiers and voids: incremental updates against recomputing from scratch after each
+#    of 15 Kinect frames (Redwood living room, from FVX_REAL_DATA; skipped without it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -20,3 +22,10 @@ if [ ! -f "$frame" ]; then
 fi
 echo "== integration" && "$build/tests/bench/bench_integrate" "$frame"
 echo "== rendering" && "$build/tests/bench/bench_render"
+redwood="$data/redwood-livingroom1-micro"
+if [ -d "$redwood" ]; then
+  echo "== frontiers and voids" && "$build/tests/bench/bench_frontiers_voids" "$redwood/depth" \
+    "$redwood/trajectory_open3d_estimated.log" 15
+else
+  echo "== frontiers and voids: skipped ($redwood not found; set FVX_REAL_DATA)"
+fi

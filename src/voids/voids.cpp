@@ -66,8 +66,9 @@ Hull convex_hull(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
-    centroid += Eigen::Vector3d(p.x(), p.y(), p.z());
-    hull.bounds_m.extend(Eigen::Vector3d(p.x(), p.y(), p.z()));
+    hull.vertices.emplace_back(p.x(), p.y(), p.z());
+    centroid += hull.vertices.back();
+    hull.bounds_m.extend(hull.vertices.back());
   }
   centroid /= double(mesh.number_of_vertices());
   for (const auto f : mesh.faces()) {
@@ -107,23 +108,15 @@ bool VoidSet::contains(const map::VoxelKey& key) const { return state_->cells.co
 
 namespace {
 
-/// The hull of the occupied cells, and which of them are its vertices.
-Hull hull_of(const map::OccupancyMap& map, const std::unordered_set<std::uint64_t>& occupied,
+/// The hull of the cells `keys` (occupied cell centres), and which of them are its vertices.
+Hull hull_of(const map::OccupancyMap& map, const std::vector<std::uint64_t>& keys,
              std::unordered_set<std::uint64_t>& vertices) {
   std::vector<Eigen::Vector3d> points;
-  points.reserve(occupied.size());
-  for (const std::uint64_t p : occupied) points.push_back(map.center_of(unpack(p)));
+  points.reserve(keys.size());
+  for (const std::uint64_t p : keys) points.push_back(map.center_of(unpack(p)));
   Hull hull = convex_hull(points);
   vertices.clear();
-  if (hull.empty()) return hull;
-  for (const std::uint64_t p : occupied) {
-    const Eigen::Vector3d c = map.center_of(unpack(p));
-    for (const Eigen::Vector4d& plane : hull.planes)
-      if (std::abs(plane.head<3>().dot(c) + plane.w()) < kTolerance) {
-        vertices.insert(p);
-        break;
-      }
-  }
+  for (const Eigen::Vector3d& v : hull.vertices) vertices.insert(pack(*map.key_of(v)));
   return hull;
 }
 
@@ -175,27 +168,34 @@ void VoidSet::rebuild(const map::OccupancyMap& map) {
           s.occupied.insert(pack({std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
                                   std::uint16_t(leaf.min_key.z + z)}));
   }
-  s.hull = hull_of(map, s.occupied, s.vertices);
+  s.hull = hull_of(map, std::vector<std::uint64_t>(s.occupied.begin(), s.occupied.end()), s.vertices);
   rescan(map, Hull{}, s.hull, s.cells);
 }
 
 void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
   State& s = *state_;
-  bool hull_changes = false;
+  std::vector<std::uint64_t> outside;  // new occupied cells beyond the hull
+  bool vertex_lost = false;
   for (const map::Change& c : changes) {
     const std::uint64_t p = pack(c.key);
     if (c.after != map::VoxelState::Unknown) s.cells.erase(p);
     if (c.after == map::VoxelState::Occupied && c.before != map::VoxelState::Occupied) {
       s.occupied.insert(p);
-      hull_changes |= !s.hull.contains(map.center_of(c.key));
+      if (!s.hull.contains(map.center_of(c.key))) outside.push_back(p);
     } else if (c.before == map::VoxelState::Occupied && c.after != map::VoxelState::Occupied) {
       s.occupied.erase(p);
-      hull_changes |= s.vertices.count(p) != 0;  // a vertex left: the hull may shrink
+      vertex_lost |= s.vertices.count(p) != 0;  // a vertex left: the hull may shrink
     }
   }
-  if (!hull_changes) return;
+  if (outside.empty() && !vertex_lost) return;
   const Hull before = s.hull;
-  s.hull = hull_of(map, s.occupied, s.vertices);
+  if (vertex_lost) {
+    s.hull = hull_of(map, std::vector<std::uint64_t>(s.occupied.begin(), s.occupied.end()), s.vertices);
+  } else {
+    // Growth only: the hull of the old vertices and the new outside points is the hull of all.
+    outside.insert(outside.end(), s.vertices.begin(), s.vertices.end());
+    s.hull = hull_of(map, outside, s.vertices);
+  }
   rescan(map, before, s.hull, s.cells);
 }
 

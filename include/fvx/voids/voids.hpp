@@ -17,7 +17,8 @@ namespace fvx::voids {
 /// The convex hull as half-spaces n·p + d <= 0 (outward unit normals n), or none when the
 /// points span no volume (fewer than four, or all in a plane).
 struct Hull {
-  std::vector<Eigen::Vector4d> planes;  ///< (n, d)
+  std::vector<Eigen::Vector4d> planes;     ///< (n, d)
+  std::vector<Eigen::Vector3d> vertices;   ///< the extreme points
   Eigen::AlignedBox3d bounds_m;
   bool empty() const { return planes.empty(); }
   /// Inside or on the hull, within 1 µm.
