@@ -116,16 +116,18 @@ void write_ellipsoids(const std::string& path, const std::vector<voids::VoidClus
 
 void write_picture(const std::string& path, const map::OccupancyMap& map, const frontier_voids::Analysis& a,
                    bool with_voids) {
+  // Occupied cells shaded by height (the scene's shape); frontier and void cells translucent
+  // over them, since in a view from above they lie at every height.
   std::vector<io::PictureLayer> layers;
-  io::PictureLayer occupied{"occupied", kOccupiedGrey, {}};
+  io::PictureLayer occupied{"occupied (lighter is higher)", kOccupiedGrey, {}, false, true};
   for (const auto& c : map.occupied_centers())
     if (a.bounds_m.contains(c.cast<double>())) occupied.centers_m.push_back(c.cast<double>());
   layers.push_back(std::move(occupied));
-  io::PictureLayer frontier{"frontier", kFrontierRed, {}};
+  io::PictureLayer frontier{"frontier", kFrontierRed, {}, true, false};
   for (const auto& k : a.frontier_cells) frontier.centers_m.push_back(map.center_of(k));
   layers.push_back(std::move(frontier));
   if (with_voids) {
-    io::PictureLayer voids{"void", kVoidViolet, {}};
+    io::PictureLayer voids{"void", kVoidViolet, {}, true, false};
     for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
     layers.push_back(std::move(voids));
   }

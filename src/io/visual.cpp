@@ -87,25 +87,29 @@ void write_top_view_png(const std::string& path, double cell_m, const std::vecto
   const int legend_px = 24 * int(layers.size()) + 12;
   const int height_px = int(std::ceil(box.sizes().y() * scale)) + legend_px;
   cv::Mat image(height_px, width_px, CV_8UC3, cv::Scalar(255, 255, 255));
-  // Layer by layer (the later ones, such as voids hidden inside boxes, over the earlier), and
-  // within a layer lowest first, so that what is seen from above ends on top.
-  struct Square {
-    double z;
-    std::size_t layer;
-    Eigen::Vector2d xy;
+  // Square edges from the cell's own bounds, so that neighbouring cells leave no gap.
+  auto square = [&](const Eigen::Vector3d& c) {
+    const int u0 = int(std::floor((c.x() - cell_m / 2 - box.min().x()) * scale));
+    const int u1 = int(std::floor((c.x() + cell_m / 2 - box.min().x()) * scale));
+    const int v0 = int(std::floor((box.max().y() - c.y() - cell_m / 2) * scale)) + legend_px;
+    const int v1 = int(std::floor((box.max().y() - c.y() + cell_m / 2) * scale)) + legend_px;
+    return cv::Rect(u0, v0, std::max(1, u1 - u0), std::max(1, v1 - v0));
   };
-  std::vector<Square> squares;
-  for (std::size_t l = 0; l < layers.size(); ++l)
-    for (const auto& c : layers[l].centers_m) squares.push_back({c.z(), l, c.head<2>()});
-  std::stable_sort(squares.begin(), squares.end(), [](const Square& a, const Square& b) {
-    return a.layer != b.layer ? a.layer < b.layer : a.z < b.z;
-  });
-  const int side = std::max(1, int(std::round(cell_m * scale)));
-  for (const Square& s : squares) {
-    const Rgb& rgb = layers[s.layer].color;
-    const int u = int((s.xy.x() - cell_m / 2 - box.min().x()) * scale);
-    const int v = int((box.max().y() - s.xy.y() - cell_m / 2) * scale) + legend_px;
-    cv::rectangle(image, cv::Rect(u, v, side, side), cv::Scalar(rgb[2], rgb[1], rgb[0]), cv::FILLED);
+  for (const PictureLayer& layer : layers) {
+    // Within a layer the highest cells on top.
+    std::vector<const Eigen::Vector3d*> cells;
+    for (const auto& c : layer.centers_m) cells.push_back(&c);
+    std::stable_sort(cells.begin(), cells.end(), [](const auto* a, const auto* b) { return a->z() < b->z(); });
+    double z_lo = INFINITY, z_hi = -INFINITY;
+    for (const auto* c : cells) z_lo = std::min(z_lo, c->z()), z_hi = std::max(z_hi, c->z());
+    cv::Mat target = layer.translucent ? image.clone() : image;
+    for (const auto* c : cells) {
+      double shade = 1.0;
+      if (layer.shade_by_height && z_hi > z_lo) shade = 0.45 + 0.55 * (c->z() - z_lo) / (z_hi - z_lo);
+      const Rgb& rgb = layer.color;
+      cv::rectangle(target, square(*c), cv::Scalar(rgb[2] * shade, rgb[1] * shade, rgb[0] * shade), cv::FILLED);
+    }
+    if (layer.translucent) cv::addWeighted(target, 0.45, image, 0.55, 0.0, image);
   }
   for (std::size_t l = 0; l < layers.size(); ++l) {
     const Rgb& rgb = layers[l].color;

@@ -53,6 +53,20 @@ TEST(CliFrontiersVoids, ReportsAndFilesPeopleOpen) {
   EXPECT_EQ(run_fvx(dir, "voids map.ot " + bounds).out, run_fvx(dir, "voids map.ot " + bounds).out);
 }
 
+TEST(CliFrontiersVoidsRealData, BothCommandsRunOnRealMaps) {
+  for (const char* name : {"octomap-maps/slambook_ch13/octomap.bt", "octomap-maps/octomap-share-data/geb079.bt"}) {
+    FVX_REAL_DATA_OR_SKIP(path, name);
+    const TempDir dir;
+    for (const char* command : {"frontiers ", "voids "}) {
+      const RunResult r = run_fvx(dir, command + path);
+      ASSERT_EQ(r.status, 0) << command << name << ": " << r.err;
+      const json j = json::parse(r.out);
+      EXPECT_GT(j["results"]["frontier_cells"].get<int>(), 1000) << command << name;
+      EXPECT_TRUE(j["warnings"].empty()) << command << name;
+    }
+  }
+}
+
 TEST(CliFrontiersVoidsRealData, OccupiedOnlyMapIsAValidEmptyResult) {
   FVX_REAL_DATA_OR_SKIP(path, "octomap-maps/octomap_tutor/sample.bt");
   const TempDir dir;

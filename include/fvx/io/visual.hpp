@@ -23,12 +23,14 @@ void write_ply_mesh(const std::string& path, const std::vector<Eigen::Vector3f>&
                     const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Rgb>& colors);
 
 /// Cells drawn as squares seen from above (looking down −z, x to the right, y up), scaled to
-/// fit `width_px`: layers in order, each over the previous ones (so voids inside boxes show),
-/// and within a layer the highest cells on top. A legend names the layers.
+/// fit `width_px`: layers in order, each over the previous ones, within a layer the highest
+/// cells on top. A legend names the layers and their cell counts.
 struct PictureLayer {
   std::string name;
   Rgb color;
   std::vector<Eigen::Vector3d> centers_m;
+  bool translucent = false;      ///< blended at 45 % over what is below (voids over boxes)
+  bool shade_by_height = false;  ///< darker low, lighter high (shows the scene's shape)
 };
 void write_top_view_png(const std::string& path, double cell_m, const std::vector<PictureLayer>& layers,
                         int width_px = 900);
