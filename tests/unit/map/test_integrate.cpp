@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "fvx/map/occupancy_map.hpp"
-#include "fvx/scan/load.hpp"
+#include "slambook.hpp"
 #include "test_support.hpp"
 
 namespace fvx::map {
@@ -158,23 +158,9 @@ TEST(Integrate, NonFiniteAndOutOfMapPointsAreCountedNotInserted) {
 TEST(IntegrateRealData, SlambookReproducesTheReferenceOctree) {
   FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
   FVX_REAL_DATA_OR_SKIP(reference_path, "octomap-maps/slambook_ch13/octomap.bt");
-  scan::LoadConfig load;
-  load.intrinsics = io::Intrinsics{518.0, 519.0, 325.5, 253.5, 1000.0, 640, 480};
-  load.trajectory_path = frames + "/pose.txt";
-  std::vector<std::string> paths;
-  for (int i = 1; i <= 5; ++i) paths.push_back(frames + "/depth/" + std::to_string(i) + ".pgm");
-  const scan::ScanPlan plan = scan::plan_scans(paths, load);
-  scan::FilterConfig filter;
-  filter.depth_max_m = 7.0;  // the recipe drops d >= 7000 mm
-
   OccupancyMap map(0.05);
-  std::vector<std::string> warnings;
-  for (const auto& source : plan.scans) {
-    scan::Scan s = scan::load_scan(source, load, warnings);
-    scan::filter(s, filter);
-    map.integrate(scan::to_world(s), s.T_world_sensor.translation().cast<float>());
-  }
-  EXPECT_TRUE(warnings.empty());
+  test::for_each_slambook_frame(frames, [&](const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin,
+                                            const std::string&) { map.integrate(points, origin); });
   const test::TempDir dir;
   map.save(dir / "slambook.bt");
   // Byte-identical, and therefore the same free and occupied leaf sets...

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "fvx/scan/load.hpp"
 #include "fvx/voids/voids.hpp"
+#include "slambook.hpp"
 #include "test_support.hpp"
 
 namespace fvx::voids {
@@ -99,25 +99,16 @@ TEST(Voids, AMapWithoutVolumeHasNoVoids) {
 
 TEST(VoidsRealData, SlambookIncrementalEqualsFromScratchAfterEveryFrame) {
   FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
-  scan::LoadConfig load;
-  load.intrinsics = io::Intrinsics{518.0, 519.0, 325.5, 253.5, 1000.0, 640, 480};
-  load.trajectory_path = frames + "/pose.txt";
-  std::vector<std::string> paths;
-  for (int i = 1; i <= 5; ++i) paths.push_back(frames + "/depth/" + std::to_string(i) + ".pgm");
-  scan::FilterConfig filter;
-  filter.depth_max_m = 7.0;
   map::OccupancyMap map(0.05);
   VoidSet incremental;
-  std::vector<std::string> warnings;
-  for (const auto& source : scan::plan_scans(paths, load).scans) {
-    scan::Scan s = scan::load_scan(source, load, warnings);
-    scan::filter(s, filter);
-    incremental.update(map, map.integrate(scan::to_world(s), s.T_world_sensor.translation().cast<float>()).changes);
+  test::for_each_slambook_frame(frames, [&](const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin,
+                                            const std::string& path) {
+    incremental.update(map, map.integrate(points, origin).changes);
     VoidSet scratch;
     scratch.rebuild(map);
     ASSERT_GT(scratch.size(), 10000u);
-    EXPECT_EQ(incremental.cells(map), scratch.cells(map)) << source.path;
-  }
+    EXPECT_EQ(incremental.cells(map), scratch.cells(map)) << path;
+  });
 }
 
 }  // namespace
