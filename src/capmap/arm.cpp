@@ -1,0 +1,160 @@
+#include "fvx/capmap/arm.hpp"
+
+#include <kdl/chain.hpp>
+#include <kdl/chainfksolverpos_recursive.hpp>
+#include <kdl/chainjnttojacsolver.hpp>
+#include <urdf_parser/urdf_parser.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+
+namespace fvx::capmap {
+
+struct Arm::Impl {
+  ArmConfig config;
+  KDL::Chain chain;
+  std::vector<std::string> joint_names;
+  Eigen::VectorXd lower, upper;
+  std::string urdf_hash;
+  // The solvers keep no state between calls but are not const-correct in KDL.
+  mutable std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk;
+  mutable std::unique_ptr<KDL::ChainJntToJacSolver> jac;
+};
+
+namespace {
+
+KDL::Frame to_kdl(const urdf::Pose& p) {
+  return KDL::Frame(KDL::Rotation::Quaternion(p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w),
+                    KDL::Vector(p.position.x, p.position.y, p.position.z));
+}
+
+Eigen::Isometry3d to_eigen(const KDL::Frame& f) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) T.linear()(r, c) = f.M(r, c);
+    T.translation()[r] = f.p[r];
+  }
+  return T;
+}
+
+std::string fnv1a_hex(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+}  // namespace
+
+Arm Arm::from_urdf(const std::string& urdf_path, const ArmConfig& config) {
+  require_readable_file(urdf_path);
+  std::ifstream in(urdf_path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return from_urdf_string(text.str(), config, urdf_path);
+}
+
+Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, const std::string& source) {
+  // urdfdom also logs parse problems on stderr (console_bridge); the error below says it too.
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
+  if (!model) throw FileError(source, "not a valid URDF (it does not parse)");
+  const auto base = model->getLink(config.base_link);
+  const auto tip = model->getLink(config.tip_link);
+  if (!base) throw UsageError("--base " + config.base_link + ": no such link in " + source);
+  if (!tip) throw UsageError("--tip " + config.tip_link + ": no such link in " + source);
+
+  // Walk from the tip up to the base; the joints on the way, base first.
+  std::vector<urdf::JointConstSharedPtr> joints;
+  for (urdf::LinkConstSharedPtr link = tip; link->name != config.base_link;) {
+    const auto parent = link->getParent();
+    if (!parent || !link->parent_joint)
+      throw UsageError("--tip " + config.tip_link + " is not below --base " + config.base_link + " in " + source);
+    joints.insert(joints.begin(), link->parent_joint);
+    link = parent;
+  }
+
+  auto impl = std::make_unique<Impl>();
+  impl->config = config;
+  impl->urdf_hash = fnv1a_hex(urdf);
+  std::vector<double> lower, upper;
+  for (const auto& j : joints) {
+    const KDL::Frame origin = to_kdl(j->parent_to_joint_origin_transform);
+    const KDL::Vector axis = origin.M * KDL::Vector(j->axis.x, j->axis.y, j->axis.z);
+    KDL::Joint joint;
+    switch (j->type) {
+      case urdf::Joint::REVOLUTE:
+      case urdf::Joint::CONTINUOUS:
+        joint = KDL::Joint(j->name, origin.p, axis, KDL::Joint::RotAxis);
+        break;
+      case urdf::Joint::PRISMATIC:
+        joint = KDL::Joint(j->name, origin.p, axis, KDL::Joint::TransAxis);
+        break;
+      case urdf::Joint::FIXED:
+        joint = KDL::Joint(j->name, KDL::Joint::None);
+        break;
+      default:
+        throw UsageError(source + ": joint " + j->name + " is floating or planar, which fvx does not support");
+    }
+    impl->chain.addSegment(KDL::Segment(j->child_link_name, joint, origin));
+    if (j->type == urdf::Joint::FIXED) continue;
+    impl->joint_names.push_back(j->name);
+    if (j->type == urdf::Joint::CONTINUOUS || !j->limits) {
+      lower.push_back(-M_PI);
+      upper.push_back(M_PI);
+    } else {
+      lower.push_back(j->limits->lower);
+      upper.push_back(j->limits->upper);
+    }
+  }
+  if (impl->joint_names.empty()) throw UsageError(source + ": no movable joint between " + config.base_link + " and " + config.tip_link);
+  impl->lower = Eigen::Map<Eigen::VectorXd>(lower.data(), Eigen::Index(lower.size()));
+  impl->upper = Eigen::Map<Eigen::VectorXd>(upper.data(), Eigen::Index(upper.size()));
+  impl->fk = std::make_unique<KDL::ChainFkSolverPos_recursive>(impl->chain);
+  impl->jac = std::make_unique<KDL::ChainJntToJacSolver>(impl->chain);
+  return Arm(std::move(impl));
+}
+
+Arm::Arm(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Arm::~Arm() = default;
+Arm::Arm(Arm&&) noexcept = default;
+Arm& Arm::operator=(Arm&&) noexcept = default;
+
+int Arm::dof() const { return int(impl_->joint_names.size()); }
+const std::vector<std::string>& Arm::joint_names() const { return impl_->joint_names; }
+const Eigen::VectorXd& Arm::lower_rad() const { return impl_->lower; }
+const Eigen::VectorXd& Arm::upper_rad() const { return impl_->upper; }
+const ArmConfig& Arm::config() const { return impl_->config; }
+const std::string& Arm::urdf_hash() const { return impl_->urdf_hash; }
+
+Eigen::Isometry3d Arm::fk(const Eigen::VectorXd& q) const {
+  FVX_ASSERT(q.size() == dof(), "joint vector size");
+  KDL::JntArray joints(unsigned(q.size()));
+  joints.data = q;
+  KDL::Frame tip;
+  impl_->fk->JntToCart(joints, tip);
+  return to_eigen(tip) * impl_->config.T_tip_sensor;
+}
+
+Eigen::Vector3d Arm::viewing_direction(const Eigen::VectorXd& q) const {
+  return fk(q).linear() * impl_->config.viewing_axis_sensor;
+}
+
+void Arm::jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen::Matrix3Xd& J_rotation) const {
+  KDL::JntArray joints(unsigned(q.size()));
+  joints.data = q;
+  KDL::Jacobian J(unsigned(q.size()));
+  impl_->jac->JntToJac(joints, J);  // reference point: the tip origin, base-frame axes
+  J_position = J.data.topRows<3>();
+  J_rotation = J.data.bottomRows<3>();
+  // Move the reference point to the sensor: v_sensor = v_tip + ω × r.
+  const Eigen::Vector3d r = fk(q).translation() - (fk(q) * impl_->config.T_tip_sensor.inverse()).translation();
+  for (int c = 0; c < J_position.cols(); ++c) J_position.col(c) += J_rotation.col(c).cross(r);
+}
+
+}  // namespace fvx::capmap

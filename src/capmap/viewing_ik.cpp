@@ -1,0 +1,106 @@
+#include "fvx/capmap/viewing_ik.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "fvx/core/error.hpp"
+
+namespace fvx::capmap {
+
+std::vector<std::string> IkConfig::validate() const {
+  std::vector<std::string> problems;
+  if (!(position_tolerance_m > 0.0)) problems.push_back("position_tolerance_m must be > 0 m");
+  if (!(angle_tolerance_rad > 0.0 && angle_tolerance_rad < M_PI)) problems.push_back("angle_tolerance_rad must be in (0, pi)");
+  if (max_iterations < 1) problems.push_back("max_iterations must be >= 1");
+  if (restarts < 0) problems.push_back("restarts must be >= 0");
+  if (!(damping > 0.0)) problems.push_back("damping must be > 0");
+  if (!(direction_weight_m > 0.0)) problems.push_back("direction_weight_m must be > 0 m");
+  return problems;
+}
+
+namespace {
+
+struct Attempt {
+  Eigen::VectorXd q;
+  double position_error_m = INFINITY, angle_error_rad = INFINITY;
+  int iterations = 0;
+  bool reached = false;
+};
+
+/// The rotation vector that turns unit vector `d` onto unit vector `target`.
+Eigen::Vector3d rotation_between(const Eigen::Vector3d& d, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d axis = d.cross(target);
+  const double s = axis.norm(), c = d.dot(target);
+  if (s < 1e-12) return c > 0 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(M_PI * d.unitOrthogonal());
+  return std::atan2(s, c) * axis / s;
+}
+
+Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vector3d& d_goal, const IkConfig& c,
+                Eigen::VectorXd q) {
+  Attempt a;
+  const int n = arm.dof();
+  Eigen::Matrix3Xd J_p(3, n), J_r(3, n);
+  for (a.iterations = 0; a.iterations <= c.max_iterations; ++a.iterations) {
+    const Eigen::Isometry3d T = arm.fk(q);
+    const Eigen::Vector3d d = T.linear() * arm.config().viewing_axis_sensor;
+    const Eigen::Vector3d e_p = p_goal - T.translation();
+    const Eigen::Vector3d e_r = rotation_between(d, d_goal);
+    a.q = q;
+    a.position_error_m = e_p.norm();
+    a.angle_error_rad = e_r.norm();
+    if (a.position_error_m <= c.position_tolerance_m && a.angle_error_rad <= c.angle_tolerance_rad) {
+      a.reached = true;
+      return a;
+    }
+    if (a.iterations == c.max_iterations) break;
+    arm.jacobian(q, J_p, J_r);
+    // Roll about the viewing axis does not change the view: keep only rotation rates
+    // perpendicular to d.
+    const Eigen::Matrix3d perpendicular = Eigen::Matrix3d::Identity() - d * d.transpose();
+    Eigen::MatrixXd J(6, n);
+    J.topRows<3>() = J_p;
+    J.bottomRows<3>() = c.direction_weight_m * perpendicular * J_r;
+    Eigen::Matrix<double, 6, 1> e;
+    e << e_p, c.direction_weight_m * e_r;
+    const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose() + c.damping * c.damping * Eigen::Matrix<double, 6, 6>::Identity();
+    Eigen::VectorXd dq = J.transpose() * JJt.ldlt().solve(e);
+    const double largest = dq.cwiseAbs().maxCoeff();
+    if (largest > 0.5) dq *= 0.5 / largest;  // at most 0.5 rad (or m) per joint per step
+    q = (q + dq).cwiseMax(arm.lower_rad()).cwiseMin(arm.upper_rad());
+  }
+  return a;
+}
+
+}  // namespace
+
+IkResult solve_viewing_ik(const Arm& arm, const Eigen::Vector3d& position_base, const Eigen::Vector3d& direction_base,
+                          const IkConfig& config, std::mt19937_64& rng, const Eigen::VectorXd* start) {
+  FVX_ASSERT(config.validate().empty(), "invalid IkConfig");
+  FVX_ASSERT(std::abs(direction_base.norm() - 1.0) < 1e-6, "the viewing direction must be a unit vector");
+  IkResult result;
+  Attempt best;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int attempt = 0; attempt <= config.restarts; ++attempt) {
+    Eigen::VectorXd q0(arm.dof());
+    if (attempt == 0 && start) {
+      q0 = *start;
+    } else {
+      for (int j = 0; j < arm.dof(); ++j)
+        q0[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
+    }
+    const Attempt a = descend(arm, position_base, direction_base, config, q0);
+    result.iterations += a.iterations;
+    result.attempts = attempt + 1;
+    const bool better = a.reached || a.position_error_m + config.direction_weight_m * a.angle_error_rad <
+                                          best.position_error_m + config.direction_weight_m * best.angle_error_rad;
+    if (better) best = a;
+    if (a.reached) break;
+  }
+  result.reached = best.reached;
+  result.q = best.q;
+  result.position_error_m = best.position_error_m;
+  result.angle_error_rad = best.angle_error_rad;
+  return result;
+}
+
+}  // namespace fvx::capmap

@@ -1,0 +1,99 @@
+// The arm model and the viewing IK: FK against hand computation, the Jacobian against finite
+// differences, FK → IK round trips on the project's arm and two real arm models.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "fvx/capmap/viewing_ik.hpp"
+#include "fvx/core/error.hpp"
+#include "test_support.hpp"
+
+namespace fvx::capmap {
+namespace {
+
+std::string fvx_arm_path() { return std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf"; }
+
+Arm fvx_arm() { return Arm::from_urdf(fvx_arm_path(), {"base_link", "kinect_optical"}); }
+
+TEST(Arm, TheFvxArmPointsStraightUpAtZero) {
+  const Arm arm = fvx_arm();
+  ASSERT_EQ(arm.dof(), 5);
+  EXPECT_EQ(arm.joint_names().front(), "yaw");
+  const Eigen::Isometry3d T = arm.fk(Eigen::VectorXd::Zero(5));
+  EXPECT_TRUE(T.translation().isApprox(Eigen::Vector3d(0, 0, 1.34), 1e-9));
+  EXPECT_TRUE(arm.viewing_direction(Eigen::VectorXd::Zero(5)).isApprox(Eigen::Vector3d::UnitZ(), 1e-9));
+  // Shoulder pitched 90° (about +y): the arm points along +x from the shoulder at 0.35 m.
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(5);
+  q[1] = M_PI / 2;
+  EXPECT_TRUE(arm.fk(q).translation().isApprox(Eigen::Vector3d(0.99, 0, 0.35), 1e-9));
+  EXPECT_TRUE(arm.viewing_direction(q).isApprox(Eigen::Vector3d::UnitX(), 1e-9));
+}
+
+TEST(Arm, JacobianMatchesFiniteDifferencesWithAMount) {
+  ArmConfig config{"base_link", "wrist"};
+  config.T_tip_sensor.translation() << 0.03, -0.02, 0.15;  // an offset mount
+  config.T_tip_sensor.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  const Arm arm = Arm::from_urdf(fvx_arm_path(), config);
+  const Eigen::VectorXd q = (Eigen::VectorXd(4) << 0.3, -0.7, 1.1, 0.4).finished();
+  Eigen::Matrix3Xd J_p, J_r;
+  arm.jacobian(q, J_p, J_r);
+  const double h = 1e-7;
+  for (int j = 0; j < arm.dof(); ++j) {
+    Eigen::VectorXd qh = q;
+    qh[j] += h;
+    const Eigen::Isometry3d a = arm.fk(q), b = arm.fk(qh);
+    const Eigen::AngleAxisd delta(b.linear() * a.linear().transpose());
+    EXPECT_TRUE(((b.translation() - a.translation()) / h).isApprox(J_p.col(j), 1e-5)) << "joint " << j;
+    EXPECT_TRUE((delta.angle() * delta.axis() / h).isApprox(J_r.col(j), 1e-5)) << "joint " << j;
+  }
+}
+
+/// FK of random configurations → their viewing pose → IK from random starts.
+void expect_round_trips(const Arm& arm, const char* name) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const IkConfig config;
+  int reached = 0;
+  const int trials = 200;
+  for (int t = 0; t < trials; ++t) {
+    Eigen::VectorXd q(arm.dof());
+    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
+    const Eigen::Vector3d p = arm.fk(q).translation(), d = arm.viewing_direction(q);
+    const IkResult r = solve_viewing_ik(arm, p, d, config, rng);
+    if (!r.reached) continue;
+    ++reached;
+    // What the solver claims holds when checked with FK.
+    EXPECT_LE((arm.fk(r.q).translation() - p).norm(), config.position_tolerance_m) << name;
+    EXPECT_LE(std::acos(std::min(1.0, arm.viewing_direction(r.q).dot(d))), config.angle_tolerance_rad + 1e-9) << name;
+    EXPECT_TRUE((r.q.array() >= arm.lower_rad().array() - 1e-12).all() && (r.q.array() <= arm.upper_rad().array() + 1e-12).all());
+  }
+  std::printf("%s: IK reached %d of %d random viewing poses\n", name, reached, trials);
+  EXPECT_GE(reached, trials * 95 / 100) << name << ": " << reached << " of " << trials;
+}
+
+TEST(ViewingIk, RoundTripsOnTheFvxArm) { expect_round_trips(fvx_arm(), "fvx-arm"); }
+
+TEST(ViewingIkRealData, RoundTripsOnYoubotAndSo101) {
+  FVX_REAL_DATA_OR_SKIP(youbot, "arms/youbot_arm.urdf");
+  FVX_REAL_DATA_OR_SKIP(so101, "arms/so101_arm.urdf");
+  expect_round_trips(Arm::from_urdf(youbot, {"base_link", "arm_link_5"}), "youbot");
+  expect_round_trips(Arm::from_urdf(so101, {"base_link", "gripper_frame_link"}), "so101");
+}
+
+TEST(Arm, BadModelsAreRefused) {
+  const test::TempDir dir;
+  std::ofstream(dir / "broken.urdf") << "<robot name='x'><link name='a'/><joint name='j'";
+  EXPECT_THROW(Arm::from_urdf(dir / "broken.urdf", {"a", "b"}), FileError);
+  EXPECT_THROW(Arm::from_urdf(dir / "missing.urdf", {"a", "b"}), FileError);
+  EXPECT_THROW(Arm::from_urdf(fvx_arm_path(), {"base_link", "no_such_link"}), UsageError);
+  EXPECT_THROW(Arm::from_urdf(fvx_arm_path(), {"forearm", "turret"}), UsageError);  // tip above base
+  try {
+    Arm::from_urdf(fvx_arm_path(), {"base_link", "no_such_link"});
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_link"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace fvx::capmap
