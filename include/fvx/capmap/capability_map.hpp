@@ -1,0 +1,91 @@
+#pragma once
+/// \file
+/// Stage `capmap`, part 2: the capability map (Zacharias, Borst, Hirzinger, IROS 2007) and
+/// its file. A voxel grid around the arm base; in each voxel N viewing directions on a
+/// golden-angle spiral; a bit per direction says whether IK reaches the voxel centre looking
+/// along it, roll free (ARCHITECTURE.md §3). A 5-DOF arm reaches only an arc of directions at
+/// each point, so the bitset is the data; the reachability index is 100 · reachable / N.
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fvx::capmap {
+
+/// N unit directions on a golden-angle spiral: d_i = (r cos φ_i, r sin φ_i, z_i) with
+/// z_i = 1 − (2i + 1)/N, r = sqrt(1 − z_i²), φ_i = i · π(3 − √5).
+class DirectionSet {
+ public:
+  explicit DirectionSet(int count);
+  int size() const { return int(directions_.size()); }
+  const Eigen::Vector3d& operator[](int i) const { return directions_[std::size_t(i)]; }
+  /// The index of the direction nearest to `d` (unit); brute force over N, about 0.2 µs at 200.
+  int nearest(const Eigen::Vector3d& d) const;
+  /// sqrt(4π / N): the mean angular spacing, radians.
+  double mean_spacing_rad() const;
+
+ private:
+  std::vector<Eigen::Vector3d> directions_;
+};
+
+/// Everything a map file says about how it was made.
+struct CapabilityHeader {
+  std::string base_link, tip_link;
+  std::array<double, 6> mount_xyz_rpy{};           ///< the sensor mount after the tip
+  Eigen::Vector3d viewing_axis = Eigen::Vector3d::UnitZ();
+  std::string urdf_hash;
+  double voxel_m = 0.05;
+  Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();  ///< the grid's minimum corner, base frame
+  std::array<std::uint32_t, 3> dims{{0, 0, 0}};        ///< voxels along x, y, z
+  int directions = 200;
+  double position_tolerance_m = 0.005;
+  double angle_tolerance_rad = 0.125;
+  std::string method;                               ///< how bits were decided, e.g. "fk-seeded-ik"
+  std::uint64_t seed = 1;
+  std::uint32_t shard_index = 0, shard_count = 1;   ///< which voxels this file holds (z-slabs)
+  std::string fvx_version;
+};
+
+class CapabilityMap {
+ public:
+  explicit CapabilityMap(CapabilityHeader header);
+
+  const CapabilityHeader& header() const { return header_; }
+  const DirectionSet& directions() const { return directions_; }
+  std::size_t voxel_count() const { return voxels_.size(); }  ///< non-empty voxels
+
+  /// The voxel containing `p_base`, or −1 outside the grid.
+  std::int64_t voxel_of(const Eigen::Vector3d& p_base) const;
+  Eigen::Vector3d center_of(std::int64_t voxel) const;
+
+  void set(std::int64_t voxel, int direction);
+  bool reachable(std::int64_t voxel, int direction) const;
+  /// Is `p_base` reachable looking along `d_base` (unit)? Nearest voxel, nearest direction.
+  bool reachable(const Eigen::Vector3d& p_base, const Eigen::Vector3d& d_base) const;
+  /// 100 · reachable directions / N in the voxel of `p_base` (0 outside).
+  double reachability_index(const Eigen::Vector3d& p_base) const;
+  /// The reachable direction indices there.
+  std::vector<int> reachable_directions(const Eigen::Vector3d& p_base) const;
+
+  /// Non-empty voxels in index order with their bitsets (64 bits per word).
+  const std::map<std::int64_t, std::vector<std::uint64_t>>& voxels() const { return voxels_; }
+
+  /// Joins shards 0 … n−1 of one build (same arm and settings) into the map a single run
+  /// makes: its header says shard 0 of 1. Throws Error for missing, repeated or foreign shards.
+  static CapabilityMap merge(const std::vector<CapabilityMap>& shards);
+
+  /// Writes `.fcm`, atomically. Format in man/fvx-capmap.5.
+  void save(const std::string& path) const;
+  /// Reads `.fcm`; FileError for a wrong magic or version, a truncated file or a checksum
+  /// mismatch.
+  static CapabilityMap load(const std::string& path);
+
+ private:
+  CapabilityHeader header_;
+  DirectionSet directions_;
+  std::map<std::int64_t, std::vector<std::uint64_t>> voxels_;
+};
+
+}  // namespace fvx::capmap
