@@ -21,9 +21,10 @@ struct Arm::Impl {
   std::vector<std::string> joint_names;
   Eigen::VectorXd lower, upper;
   std::string urdf_hash;
-  // The solvers keep no state between calls but are not const-correct in KDL.
-  mutable std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk;
-  mutable std::unique_ptr<KDL::ChainJntToJacSolver> jac;
+  // KDL is not safe to share between threads: its solvers keep scratch state and
+  // KDL::Joint caches its last pose in mutable members. fk() and jacobian() work on a copy
+  // of the chain, so that one Arm serves many threads (a build found the race: maps
+  // differed between 1 and 3 threads).
 };
 
 namespace {
@@ -115,8 +116,6 @@ Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, cons
   if (impl->joint_names.empty()) throw UsageError(source + ": no movable joint between " + config.base_link + " and " + config.tip_link);
   impl->lower = Eigen::Map<Eigen::VectorXd>(lower.data(), Eigen::Index(lower.size()));
   impl->upper = Eigen::Map<Eigen::VectorXd>(upper.data(), Eigen::Index(upper.size()));
-  impl->fk = std::make_unique<KDL::ChainFkSolverPos_recursive>(impl->chain);
-  impl->jac = std::make_unique<KDL::ChainJntToJacSolver>(impl->chain);
   return Arm(std::move(impl));
 }
 
@@ -137,7 +136,8 @@ Eigen::Isometry3d Arm::fk(const Eigen::VectorXd& q) const {
   KDL::JntArray joints(unsigned(q.size()));
   joints.data = q;
   KDL::Frame tip;
-  impl_->fk->JntToCart(joints, tip);
+  const KDL::Chain chain = impl_->chain;
+  KDL::ChainFkSolverPos_recursive(chain).JntToCart(joints, tip);
   return to_eigen(tip) * impl_->config.T_tip_sensor;
 }
 
@@ -149,11 +149,13 @@ void Arm::jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen
   KDL::JntArray joints(unsigned(q.size()));
   joints.data = q;
   KDL::Jacobian J(unsigned(q.size()));
-  impl_->jac->JntToJac(joints, J);  // reference point: the tip origin, base-frame axes
+  const KDL::Chain chain = impl_->chain;
+  KDL::ChainJntToJacSolver(chain).JntToJac(joints, J);  // reference: tip origin, base axes
   J_position = J.data.topRows<3>();
   J_rotation = J.data.bottomRows<3>();
   // Move the reference point to the sensor: v_sensor = v_tip + ω × r.
-  const Eigen::Vector3d r = fk(q).translation() - (fk(q) * impl_->config.T_tip_sensor.inverse()).translation();
+  const Eigen::Isometry3d T_base_sensor = fk(q);
+  const Eigen::Vector3d r = T_base_sensor.translation() - (T_base_sensor * impl_->config.T_tip_sensor.inverse()).translation();
   for (int c = 0; c < J_position.cols(); ++c) J_position.col(c) += J_rotation.col(c).cross(r);
 }
 

@@ -32,6 +32,14 @@ int DirectionSet::nearest(const Eigen::Vector3d& d) const {
   return best;
 }
 
+std::vector<int> DirectionSet::within(const Eigen::Vector3d& d, double angle_rad) const {
+  std::vector<int> out;
+  const double min_dot = std::cos(angle_rad);
+  for (int i = 0; i < size(); ++i)
+    if (directions_[std::size_t(i)].dot(d) >= min_dot) out.push_back(i);
+  return out;
+}
+
 double DirectionSet::mean_spacing_rad() const { return std::sqrt(4.0 * M_PI / size()); }
 
 CapabilityMap::CapabilityMap(CapabilityHeader header) : header_(std::move(header)), directions_(header_.directions) {

@@ -60,8 +60,15 @@ Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vect
     Eigen::MatrixXd J(6, n);
     J.topRows<3>() = J_p;
     J.bottomRows<3>() = c.direction_weight_m * perpendicular * J_r;
+    // Direction error inside half the angle tolerance does not pull: where the task has more
+    // constraints than the arm has joints, least squares would otherwise trade position for
+    // direction and settle outside the position tolerance (a planar arm lost a third of its
+    // reachable bits to that).
+    const double dead_band = 0.5 * c.angle_tolerance_rad, angle = e_r.norm();
+    const Eigen::Vector3d e_r_pull = angle > dead_band ? Eigen::Vector3d(e_r * ((angle - dead_band) / angle))
+                                                       : Eigen::Vector3d::Zero();
     Eigen::Matrix<double, 6, 1> e;
-    e << e_p, c.direction_weight_m * e_r;
+    e << e_p, c.direction_weight_m * e_r_pull;
     const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose() + c.damping * c.damping * Eigen::Matrix<double, 6, 6>::Identity();
     Eigen::VectorXd dq = J.transpose() * JJt.ldlt().solve(e);
     const double largest = dq.cwiseAbs().maxCoeff();

@@ -23,6 +23,8 @@ class DirectionSet {
   const Eigen::Vector3d& operator[](int i) const { return directions_[std::size_t(i)]; }
   /// The index of the direction nearest to `d` (unit); brute force over N, about 0.2 µs at 200.
   int nearest(const Eigen::Vector3d& d) const;
+  /// The indices of the directions within `angle_rad` of `d` (unit), ascending.
+  std::vector<int> within(const Eigen::Vector3d& d, double angle_rad) const;
   /// sqrt(4π / N): the mean angular spacing, radians.
   double mean_spacing_rad() const;
 

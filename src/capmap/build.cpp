@@ -1,0 +1,166 @@
+#include "fvx/capmap/build.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"
+
+namespace fvx::capmap {
+
+std::vector<std::string> BuildConfig::validate() const {
+  std::vector<std::string> problems;
+  if (!(voxel_m > 0.0) || !std::isfinite(voxel_m)) problems.push_back("voxel_m must be > 0 m");
+  if (directions < 1 || directions > 4096) problems.push_back("directions must be 1 to 4096");
+  if (!(position_tolerance_m > 0.0)) problems.push_back("position_tolerance_m must be > 0 m");
+  if (!(angle_tolerance_rad >= 0.0 && angle_tolerance_rad < M_PI)) problems.push_back("angle_tolerance_rad must be in [0, pi)");
+  if (ik_restarts < 0) problems.push_back("ik_restarts must be >= 0");
+  if (workspace_samples < 10 || fk_samples < 1) problems.push_back("workspace_samples and fk_samples must be positive");
+  if (shard_count < 1 || shard_index >= shard_count) problems.push_back("shard_index must be below shard_count");
+  return problems;
+}
+
+namespace {
+
+Eigen::VectorXd random_configuration(const Arm& arm, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd q(arm.dof());
+  for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
+  return q;
+}
+
+std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t x = a ^ (b + 0x9E3779B97F4A7C15ull + (a << 6) + (a >> 2));
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+struct Candidate {
+  std::int64_t voxel;
+  int direction;
+  Eigen::VectorXd seed_q;  ///< empty: start from random configurations only
+};
+
+}  // namespace
+
+CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, BuildStats* stats,
+                                   const std::function<void(std::size_t, std::size_t)>& progress,
+                                   const std::atomic<bool>* cancel) {
+  FVX_ASSERT(config.validate().empty(), "invalid BuildConfig");
+  const DirectionSet directions(config.directions);
+  const double v = config.voxel_m;
+
+  // 1. The workspace, from FK samples; voxel centres on the lattice k·v.
+  std::mt19937_64 rng(mix(config.seed, 1));
+  Eigen::AlignedBox3d reach;
+  for (std::size_t i = 0; i < config.workspace_samples; ++i) reach.extend(arm.fk(random_configuration(arm, rng)).translation());
+  CapabilityHeader h;
+  const ArmConfig& ac = arm.config();
+  h.base_link = ac.base_link;
+  h.tip_link = ac.tip_link;
+  const Eigen::Vector3d rpy = ac.T_tip_sensor.linear().eulerAngles(2, 1, 0).reverse();
+  h.mount_xyz_rpy = {ac.T_tip_sensor.translation().x(), ac.T_tip_sensor.translation().y(),
+                     ac.T_tip_sensor.translation().z(), rpy.x(), rpy.y(), rpy.z()};
+  h.viewing_axis = ac.viewing_axis_sensor;
+  h.urdf_hash = arm.urdf_hash();
+  h.voxel_m = v;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = std::floor(reach.min()[a] / v + 0.5) - 1.0, hi = std::floor(reach.max()[a] / v + 0.5) + 1.0;
+    h.origin_m[a] = (lo - 0.5) * v;
+    h.dims[std::size_t(a)] = std::uint32_t(hi - lo + 1.0);
+  }
+  h.directions = config.directions;
+  h.position_tolerance_m = config.position_tolerance_m;
+  h.angle_tolerance_rad = config.angle_tolerance_rad > 0 ? config.angle_tolerance_rad : 0.5 * directions.mean_spacing_rad();
+  h.method = config.exhaustive ? "exhaustive-ik" : "fk-seeded-ik";
+  h.seed = config.seed;
+  h.shard_index = config.shard_index;
+  h.shard_count = config.shard_count;
+  h.fvx_version = version();
+  CapabilityMap map(h);
+
+  // This shard's z-slab.
+  const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
+  const std::uint32_t z_begin = h.dims[2] * config.shard_index / config.shard_count;
+  const std::uint32_t z_end = h.dims[2] * (config.shard_index + 1) / config.shard_count;
+  auto in_shard = [&](std::int64_t voxel) {
+    const auto z = std::uint32_t(voxel / layer);
+    return z >= z_begin && z < z_end;
+  };
+
+  // 2. Candidates: every bit (exhaustive), or those the FK samples propose, each with the
+  //    first seed configuration that proposed it.
+  std::vector<Candidate> candidates;
+  if (config.exhaustive) {
+    for (std::int64_t voxel = std::int64_t(z_begin) * layer; voxel < std::int64_t(z_end) * layer; ++voxel)
+      for (int d = 0; d < directions.size(); ++d) candidates.push_back({voxel, d, {}});
+  } else {
+    std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
+    std::mt19937_64 fk_rng(mix(config.seed, 2));
+    for (std::size_t i = 0; i < config.fk_samples; ++i) {
+      const Eigen::VectorXd q = random_configuration(arm, fk_rng);
+      const Eigen::Isometry3d T = arm.fk(q);
+      const std::int64_t voxel = map.voxel_of(T.translation());
+      if (voxel < 0 || !in_shard(voxel)) continue;
+      // Every direction within the angle tolerance of the sampled one, not only the nearest:
+      // IK may reach each of them, and proposing only the nearest cost 20 % of the recall.
+      for (const int d : directions.within(T.linear() * ac.viewing_axis_sensor, h.angle_tolerance_rad))
+        proposed.emplace(std::make_pair(voxel, d), q);
+    }
+    for (auto& [bit, q] : proposed) candidates.push_back({bit.first, bit.second, std::move(q)});
+  }
+
+  // 3. The IK check, on all cores; results land in a per-candidate slot (deterministic).
+  IkConfig ik;
+  ik.position_tolerance_m = h.position_tolerance_m;
+  ik.angle_tolerance_rad = h.angle_tolerance_rad;
+  ik.restarts = config.ik_restarts;
+  std::vector<std::uint8_t> reached(candidates.size(), 0);
+  std::vector<std::size_t> iterations(candidates.size(), 0);
+  std::atomic<std::size_t> next{0}, done{0};
+  auto work = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < candidates.size();) {
+      if (cancel && cancel->load()) return;
+      const Candidate& c = candidates[i];
+      std::mt19937_64 bit_rng(mix(mix(config.seed, std::uint64_t(c.voxel)), std::uint64_t(c.direction)));
+      const IkResult r = solve_viewing_ik(arm, map.center_of(c.voxel), directions[c.direction], ik, bit_rng,
+                                          c.seed_q.size() ? &c.seed_q : nullptr);
+      reached[i] = r.reached;
+      iterations[i] = std::size_t(r.iterations);
+      done.fetch_add(1);
+    }
+  };
+  const unsigned threads = std::max(1u, config.threads ? config.threads : std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  if (progress) {
+    std::thread worker(work);
+    while (done.load() < candidates.size() && !(cancel && cancel->load())) {
+      progress(done.load(), candidates.size());
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    worker.join();
+    progress(done.load(), candidates.size());
+  } else {
+    work();
+  }
+  for (auto& t : pool) t.join();
+
+  BuildStats s;
+  s.candidates = candidates.size();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    s.ik_iterations += iterations[i];
+    if (!reached[i]) continue;
+    map.set(candidates[i].voxel, candidates[i].direction);
+    ++s.reached;
+  }
+  if (stats) *stats = s;
+  return map;
+}
+
+}  // namespace fvx::capmap

@@ -1,0 +1,143 @@
+// Building capability maps: a planar arm whose reachable set is known in closed form,
+// determinism across threads and shards, precision against IK on the fvx arm.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "fvx/capmap/build.hpp"
+#include "test_support.hpp"
+
+namespace fvx::capmap {
+namespace {
+
+// Two links in the x–z plane (joints about y, full circles), the sensor looking along the
+// second link: p = s + L1·u + L2·d with s = (0, 0, 0.2), L1 = 0.3, L2 = 0.2.
+const char* kPlanarArm = R"(<robot name="planar">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="sensor"/>
+  <joint name="j1" type="continuous"><parent link="base"/><child link="l1"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 1 0"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0 0 0.3"/><axis xyz="0 1 0"/></joint>
+  <joint name="mount" type="fixed"><parent link="l2"/><child link="sensor"/><origin xyz="0 0 0.2"/></joint>
+</robot>)";
+
+Arm planar_arm() { return Arm::from_urdf_string(kPlanarArm, {"base", "sensor"}, "planar arm"); }
+
+/// The distance from voxel centre c to the nearest sensor position that looks along some
+/// in-plane d within `angle` of d_i: the circle of radius L1 around s + L2·d. In-plane
+/// d(θ) = (sin θ, 0, cos θ) has d·d_i = r·cos(θ − θ0) with r = sqrt(1 − d_i,y²), so the valid
+/// θ form the interval |θ − θ0| ≤ acos(cos(angle) / r), sampled densely.
+double closed_form_distance(const Eigen::Vector3d& c, const Eigen::Vector3d& d_i, double angle) {
+  const Eigen::Vector3d s(0, 0, 0.2);
+  const double r = std::hypot(d_i.x(), d_i.z());
+  if (r < 1e-12 || std::cos(angle) > r) return INFINITY;  // no in-plane direction close enough
+  const double theta0 = std::atan2(d_i.x(), d_i.z()), half_width = std::acos(std::cos(angle) / r);
+  double best = INFINITY;
+  for (int k = -1000; k <= 1000; ++k) {
+    const double theta = theta0 + half_width * k / 1000.0;
+    const Eigen::Vector3d m = s + 0.2 * Eigen::Vector3d(std::sin(theta), 0, std::cos(theta));
+    const double in_plane = std::hypot(c.x() - m.x(), c.z() - m.z()) - 0.3;
+    best = std::min(best, std::hypot(in_plane, c.y()));
+  }
+  return best;
+}
+
+TEST(BuildCapabilityMap, PlanarArmMatchesTheClosedForm) {
+  const Arm arm = planar_arm();
+  BuildConfig config;
+  config.voxel_m = 0.05;
+  config.directions = 100;
+  config.fk_samples = 100000;
+  BuildStats stats;
+  const CapabilityMap map = build_capability_map(arm, config, &stats);
+  const double tol_p = map.header().position_tolerance_m, tol_a = map.header().angle_tolerance_rad;
+  ASSERT_GT(stats.reached, 100u);
+  std::size_t false_positives = 0, truly_reachable = 0, found = 0;
+  for (const auto& [voxel, bits] : map.voxels())
+    for (int d = 0; d < map.directions().size(); ++d)
+      if (map.reachable(voxel, d) &&
+          closed_form_distance(map.center_of(voxel), map.directions()[d], tol_a + 1e-6) > tol_p + 1e-4)
+        ++false_positives;
+  // Recall over the plane y = 0: bits reachable with half the tolerances to spare.
+  for (std::int64_t voxel = 0; voxel < std::int64_t(map.header().dims[0]) * map.header().dims[1] * map.header().dims[2]; ++voxel) {
+    const Eigen::Vector3d c = map.center_of(voxel);
+    if (std::abs(c.y()) > 1e-9) continue;
+    for (int d = 0; d < map.directions().size(); ++d) {
+      if (closed_form_distance(c, map.directions()[d], tol_a / 2) > tol_p / 2) continue;
+      ++truly_reachable;
+      found += map.reachable(voxel, d);
+    }
+  }
+  std::printf("planar arm: %zu bits set, %zu false positives; recall %zu of %zu\n", stats.reached, false_positives,
+              found, truly_reachable);
+  EXPECT_EQ(false_positives, 0u);
+  ASSERT_GT(truly_reachable, 50u);
+  EXPECT_GE(double(found), 0.9 * double(truly_reachable));
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+TEST(BuildCapabilityMap, SameSeedSameBytesOnAnyThreadCountAndShardsMergeToIt) {
+  const test::TempDir dir;
+  const Arm arm = planar_arm();
+  BuildConfig config;
+  config.voxel_m = 0.05;
+  config.directions = 60;
+  config.fk_samples = 20000;
+  config.threads = 1;
+  build_capability_map(arm, config).save(dir / "one.fcm");
+  config.threads = 3;
+  build_capability_map(arm, config).save(dir / "three.fcm");
+  EXPECT_TRUE(bytes_of(dir / "one.fcm") == bytes_of(dir / "three.fcm")) << "1 and 3 threads differ";
+  std::vector<CapabilityMap> shards;
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    config.shard_index = i;
+    config.shard_count = 3;
+    shards.push_back(build_capability_map(arm, config));
+  }
+  CapabilityMap::merge(shards).save(dir / "merged.fcm");
+  EXPECT_TRUE(bytes_of(dir / "merged.fcm") == bytes_of(dir / "one.fcm")) << "merged shards differ";
+  config.seed = 2;
+  config.shard_count = 1;
+  config.shard_index = 0;
+  build_capability_map(arm, config).save(dir / "seed2.fcm");
+  EXPECT_TRUE(bytes_of(dir / "seed2.fcm") != bytes_of(dir / "one.fcm")) << "the seed changes nothing";
+}
+
+TEST(BuildCapabilityMap, BitsOfTheFvxArmAreConfirmedByIk) {
+  const Arm arm = Arm::from_urdf(std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf",
+                                 {"base_link", "kinect_optical"});
+  BuildConfig config;
+  config.voxel_m = 0.15;
+  config.directions = 50;
+  config.fk_samples = 30000;
+  const CapabilityMap map = build_capability_map(arm, config);
+  ASSERT_GT(map.voxel_count(), 100u);
+  // Precision: random queries the map calls reachable, checked by IK at the query itself
+  // (not the voxel centre), with the map's tolerances widened by the voxel and direction
+  // quantisation.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  IkConfig ik;
+  ik.position_tolerance_m = map.header().position_tolerance_m + std::sqrt(3.0) * config.voxel_m / 2;
+  ik.angle_tolerance_rad = map.header().angle_tolerance_rad + map.directions().mean_spacing_rad();
+  int said_yes = 0, confirmed = 0;
+  for (const auto& [voxel, bits] : map.voxels()) {
+    if (said_yes >= 150) break;
+    const auto dirs = map.reachable_directions(map.center_of(voxel));
+    const Eigen::Vector3d p = map.center_of(voxel) + config.voxel_m * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d d = map.directions()[dirs[dirs.size() / 2]];
+    if (!map.reachable(p, d)) continue;
+    ++said_yes;
+    confirmed += solve_viewing_ik(arm, p, d, ik, rng).reached;
+  }
+  std::printf("fvx arm: %d of %d queries the map calls reachable are reached by IK\n", confirmed, said_yes);
+  EXPECT_GE(confirmed, said_yes * 95 / 100);
+}
+
+}  // namespace
+}  // namespace fvx::capmap
