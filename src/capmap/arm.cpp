@@ -1,5 +1,6 @@
 #include "fvx/capmap/arm.hpp"
 
+#include <console_bridge/console.h>
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
@@ -62,7 +63,8 @@ Arm Arm::from_urdf(const std::string& urdf_path, const ArmConfig& config) {
 }
 
 Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, const std::string& source) {
-  // urdfdom also logs parse problems on stderr (console_bridge); the error below says it too.
+  // urdfdom logs parse problems on stderr through console_bridge; fvx says it once, below.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
   if (!model) throw FileError(source, "not a valid URDF (it does not parse)");
   const auto base = model->getLink(config.base_link);

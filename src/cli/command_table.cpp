@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       {kIntegrateSpec, run_integrate},
       {kFrontiersSpec, run_frontiers},
       {kVoidsSpec, run_voids},
+      {kCapmapSpec, run_capmap},
       {kSimulateSpec, run_simulate},
   };
   return table;

@@ -28,6 +28,8 @@ extern const CommandSpec kFrontiersSpec;
 int run_frontiers(const Args& args);
 extern const CommandSpec kVoidsSpec;
 int run_voids(const Args& args);
+extern const CommandSpec kCapmapSpec;
+int run_capmap(const Args& args);
 extern const CommandSpec kSimulateSpec;
 int run_simulate(const Args& args);
 
