@@ -6,7 +6,9 @@
 #  - rendering: a 640x480 frame of a 100k-triangle scene (Embree, CGAL), and the trees
 #    against brute force on a small scene;
 #  - frontiers and voids: incremental updates against recomputing from scratch after each
-#    of 15 Kinect frames (Redwood living room, from FVX_REAL_DATA; skipped without it).
+#    of 15 Kinect frames (Redwood living room, from FVX_REAL_DATA; skipped without it);
+#  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
+#    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -28,4 +30,10 @@ if [ -d "$redwood" ]; then
     "$redwood/trajectory_open3d_estimated.log" 15
 else
   echo "== frontiers and voids: skipped ($redwood not found; set FVX_REAL_DATA)"
+fi
+youbot="$data/arms/youbot_arm.urdf"
+if [ -f "$youbot" ]; then
+  echo "== capability maps" && "$build/tests/bench/bench_capmap" "$youbot"
+else
+  echo "== capability maps: skipped ($youbot not found; set FVX_REAL_DATA)"
 fi
