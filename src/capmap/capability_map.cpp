@@ -90,6 +90,13 @@ std::vector<int> CapabilityMap::reachable_directions(const Eigen::Vector3d& p) c
   return out;
 }
 
+std::vector<Eigen::Vector3d> CapabilityMap::reachable_directions(const Eigen::Isometry3d& T_world_base,
+                                                                const Eigen::Vector3d& p_world) const {
+  std::vector<Eigen::Vector3d> out;
+  for (int i : reachable_directions(T_world_base.inverse() * p_world)) out.push_back(T_world_base.linear() * directions_[i]);
+  return out;
+}
+
 double CapabilityMap::reachability_index(const Eigen::Vector3d& p) const {
   return 100.0 * double(reachable_directions(p).size()) / directions_.size();
 }

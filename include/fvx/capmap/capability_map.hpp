@@ -66,6 +66,15 @@ class CapabilityMap {
   bool reachable(std::int64_t voxel, int direction) const;
   /// Is `p_base` reachable looking along `d_base` (unit)? Nearest voxel, nearest direction.
   bool reachable(const Eigen::Vector3d& p_base, const Eigen::Vector3d& d_base) const;
+  /// The same for a map placed in the world at `T_world_base` (the arm's base pose): is the
+  /// world-frame position reachable looking along the world-frame direction?
+  bool reachable(const Eigen::Isometry3d& T_world_base, const Eigen::Vector3d& p_world,
+                 const Eigen::Vector3d& d_world) const {
+    return reachable(T_world_base.inverse() * p_world, T_world_base.linear().transpose() * d_world);
+  }
+  /// The reachable directions at a world-frame position, in the world frame.
+  std::vector<Eigen::Vector3d> reachable_directions(const Eigen::Isometry3d& T_world_base,
+                                                    const Eigen::Vector3d& p_world) const;
   /// 100 · reachable directions / N in the voxel of `p_base` (0 outside).
   double reachability_index(const Eigen::Vector3d& p_base) const;
   /// The reachable direction indices there.

@@ -70,6 +70,20 @@ TEST(CapabilityMap, QueriesFindTheVoxelAndTheNearestDirection) {
   EXPECT_FALSE(map.reachable(Eigen::Vector3d(5, 0, 0), d));
 }
 
+TEST(CapabilityMap, WorldFrameQueriesGoThroughTheBasePose) {
+  CapabilityMap map(small_header());
+  const Eigen::Vector3d p_base(0.33, -0.47, 0.81);
+  map.set(map.voxel_of(p_base), 42);
+  Eigen::Isometry3d T_world_base(Eigen::AngleAxisd(0.8, Eigen::Vector3d(0.2, -0.3, 1).normalized()));
+  T_world_base.translation() << 2.0, -1.0, 0.3;
+  const Eigen::Vector3d d_base = map.directions()[42];
+  EXPECT_TRUE(map.reachable(T_world_base, T_world_base * p_base, T_world_base.linear() * d_base));
+  EXPECT_FALSE(map.reachable(T_world_base, p_base, d_base));  // the base-frame point, taken as world
+  const auto dirs = map.reachable_directions(T_world_base, T_world_base * p_base);
+  ASSERT_EQ(dirs.size(), 1u);
+  EXPECT_TRUE(dirs[0].isApprox(T_world_base.linear() * d_base));
+}
+
 TEST(CapabilityMap, FileRoundTripIsExactAndDeterministic) {
   const test::TempDir dir;
   const CapabilityMap map = small_map();
