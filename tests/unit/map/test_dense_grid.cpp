@@ -1,0 +1,68 @@
+// The dense grid against the octree it snapshots: states cell by cell, and ray walks
+// against OccupancyMap::cast_ray.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fvx/map/dense_grid.hpp"
+
+namespace fvx::map {
+namespace {
+
+OccupancyMap random_map(std::mt19937& rng) {
+  OccupancyMap map(0.1);
+  std::normal_distribution<float> g(0, 1);
+  for (int s = 0; s < 3; ++s) {
+    const Eigen::Vector3f origin(0.3f * s, -0.2f * s, 0.1f);
+    std::vector<Eigen::Vector3f> points;
+    for (int i = 0; i < 400; ++i) points.push_back(origin + Eigen::Vector3f(g(rng), g(rng), g(rng)).normalized() * 1.5f);
+    map.integrate(points, origin, 1.2);
+  }
+  return map;
+}
+
+TEST(DenseGrid, StatesEqualTheOctreeCellByCell) {
+  std::mt19937 rng(2);
+  const OccupancyMap map = random_map(rng);
+  const Eigen::AlignedBox3d bounds(Eigen::Vector3d(-1.5, -1.5, -1.2), Eigen::Vector3d(1.6, 1.1, 1.3));
+  const DenseGrid grid(map, bounds);
+  ASSERT_GT(grid.cell_count(), 10000u);
+  std::size_t known = 0;
+  for (std::size_t i = 0; i < grid.cell_count(); ++i) {
+    const VoxelKey k = grid.key(i);
+    ASSERT_EQ(grid.index(k), i);
+    ASSERT_TRUE(bounds.contains(grid.center_of(k)));
+    ASSERT_EQ(grid.state_at(i), map.state(k));
+    known += grid.state_at(i) != VoxelState::Unknown;
+  }
+  EXPECT_GT(known, 1000u);
+}
+
+TEST(DenseGrid, WalksEqualTheOctreeRayCast) {
+  std::mt19937 rng(4);
+  const OccupancyMap map = random_map(rng);
+  const DenseGrid grid(map, Eigen::AlignedBox3d(Eigen::Vector3d(-3, -3, -3), Eigen::Vector3d(3, 3, 3)));
+  std::uniform_real_distribution<double> u(-0.8, 0.8);
+  std::normal_distribution<double> g(0, 1);
+  int compared = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d origin(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d dir = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const RayCast octree = map.cast_ray({origin, dir, 1.5, false});
+    VoxelKey last;
+    const RayOutcome outcome = grid.walk(origin, dir, 1.5, [&](std::size_t index, VoxelState s) {
+      last = grid.key(index);
+      return s == VoxelState::Free;
+    });
+    if (octree.outcome == RayOutcome::OutOfBounds) continue;  // the octree starts outside its key space
+    ASSERT_EQ(outcome, octree.outcome) << i;
+    if (outcome == RayOutcome::Hit || outcome == RayOutcome::Unknown) {
+      EXPECT_EQ(last, octree.key) << i;
+    }
+    ++compared;
+  }
+  EXPECT_GT(compared, 1900);
+}
+
+}  // namespace
+}  // namespace fvx::map
