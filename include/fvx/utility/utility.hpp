@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// Stage `utility` (paper §IV-C, Algorithm 1): utility vectors from each frontier-void's
+/// ellipsoid corners through its frontier cells, traced into free space, their utility
+/// accumulated per cell. For every frontier-void fv_i = (v_i, F_i), every corner c of v_i
+/// (μ_i and μ_i ± a_ij·e_ij, ARCHITECTURE.md §3) and every frontier cell f of F_i, a ray
+/// starts at pos(f), goes along normalize(pos(f) − c) for at most s_r, and stops at the first
+/// cell that is not free; each cell it passes, f included, gains u_i. Cells with much
+/// utility see many voids through their frontiers: candidate viewpoints.
+#include <string>
+#include <vector>
+
+#include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/map/dense_grid.hpp"
+
+namespace fvx::utility {
+
+struct Config {
+  double sensor_range_m = 4.0;  ///< s_r: the longest a utility ray goes, metres (Kinect v1: 4)
+  std::vector<std::string> validate() const;
+};
+
+struct Field {
+  std::vector<double> util_m3;  ///< per grid cell (DenseGrid index), the sum of u_i through it
+  std::size_t vectors = 0;      ///< utility vectors traced
+  std::size_t cells = 0;        ///< cells with utility > 0
+  double max_m3 = 0.0;
+};
+
+/// Accumulates Algorithm 1 over `grid` (the map within the search space). Frontier cells
+/// outside the grid cast no ray; rays end at the grid's edge.
+Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& analysis, const Config& config);
+
+}  // namespace fvx::utility
