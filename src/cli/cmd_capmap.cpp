@@ -70,15 +70,20 @@ Json header_json(const capmap::CapabilityHeader& h) {
           {"fvx_version", h.fvx_version}};
 }
 
+/// T_tip_sensor from x, y, z (metres) and roll, pitch, yaw (radians): R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Isometry3d mount_pose(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d T(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
+  T.translation() << x, y, z;
+  return T;
+}
+
 capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std::string& tip, const Args& args) {
   capmap::ArmConfig config{base, tip};
   if (args.has("mount")) {
     const auto m = parse_double_list(args.get("mount"), "--mount (x,y,z,roll,pitch,yaw)", 6);
     const double d = M_PI / 180.0;
-    config.T_tip_sensor = Eigen::Isometry3d(Eigen::AngleAxisd(m[5] * d, Eigen::Vector3d::UnitZ()) *
-                                            Eigen::AngleAxisd(m[4] * d, Eigen::Vector3d::UnitY()) *
-                                            Eigen::AngleAxisd(m[3] * d, Eigen::Vector3d::UnitX()));
-    config.T_tip_sensor.translation() << m[0], m[1], m[2];
+    config.T_tip_sensor = mount_pose(m[0], m[1], m[2], m[3] * d, m[4] * d, m[5] * d);
   }
   if (args.has("axis")) {
     const Eigen::Vector3d axis = vec3(args, "axis");
@@ -183,11 +188,8 @@ int eval(const Args& args, Json& report) {
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
   const auto& h = map.header();
   capmap::ArmConfig config{h.base_link, h.tip_link};
-  // The header keeps the mount as x, y, z and roll, pitch, yaw in radians.
-  config.T_tip_sensor = Eigen::Isometry3d(Eigen::AngleAxisd(h.mount_xyz_rpy[5], Eigen::Vector3d::UnitZ()) *
-                                          Eigen::AngleAxisd(h.mount_xyz_rpy[4], Eigen::Vector3d::UnitY()) *
-                                          Eigen::AngleAxisd(h.mount_xyz_rpy[3], Eigen::Vector3d::UnitX()));
-  config.T_tip_sensor.translation() << h.mount_xyz_rpy[0], h.mount_xyz_rpy[1], h.mount_xyz_rpy[2];
+  const auto& m = h.mount_xyz_rpy;  // metres and radians
+  config.T_tip_sensor = mount_pose(m[0], m[1], m[2], m[3], m[4], m[5]);
   config.viewing_axis_sensor = h.viewing_axis;
   const capmap::Arm arm = capmap::Arm::from_urdf(args.positional[2], config);
   std::vector<std::string> warnings;
