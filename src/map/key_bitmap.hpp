@@ -95,7 +95,7 @@ class KeyBitmap {
   }
 
   bool insert(const octomap::OcTreeKey& k) {
-    const auto [block, bit] = locate(k, true);
+    const auto [block, bit] = locate(k);
     std::uint64_t& word = bits_[block][bit >> 6];
     const std::uint64_t mask = std::uint64_t(1) << (bit & 63);
     const bool added = !(word & mask);
@@ -104,8 +104,14 @@ class KeyBitmap {
   }
 
   bool contains(const octomap::OcTreeKey& k) const {
-    const auto [block, bit] = const_cast<KeyBitmap*>(this)->locate(k, false);
-    return block != kNone && (bits_[block][bit >> 6] >> (bit & 63)) & 1u;
+    const Address a = address(k);
+    std::uint32_t block = kNone;
+    if (!dense_.empty()) {
+      block = dense_[a.slot];
+    } else if (const auto it = sparse_.find(a.slot); it != sparse_.end()) {
+      block = it->second;
+    }
+    return block != kNone && (bits_[block][a.bit >> 6] >> (a.bit & 63)) & 1u;
   }
 
   /// Calls f(key) for every stored key, block by block in order of first insertion.
@@ -127,34 +133,34 @@ class KeyBitmap {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   static constexpr std::uint64_t kMaxDenseSlots = std::uint64_t(1) << 24;  // 64 MiB of slots
 
-  std::pair<std::uint32_t, unsigned> locate(const octomap::OcTreeKey& k, bool create) {
+  /// Where a key lives: its block slot in the box, its bit in the block, its block's corner.
+  struct Address {
+    std::uint64_t slot;
+    unsigned bit;
+    std::array<int, 3> corner;
+  };
+
+  Address address(const octomap::OcTreeKey& k) const {
     int local[3];
     for (int i = 0; i < 3; ++i) {
       local[i] = int(k[i]) - origin_[i];
       FVX_ASSERT(local[i] >= 0 && local[i] / 8 < blocks_[i], "key outside the bitmap's box");
     }
-    const std::uint64_t slot =
-        (std::uint64_t(local[2] / 8) * blocks_[1] + local[1] / 8) * blocks_[0] + local[0] / 8;
-    std::uint32_t* index;
-    if (!dense_.empty()) {
-      index = &dense_[slot];
-    } else {
-      auto it = sparse_.find(slot);
-      if (it == sparse_.end()) {
-        if (!create) return {kNone, 0};
-        it = sparse_.emplace(slot, kNone).first;
-      }
-      index = &it->second;
-    }
-    if (*index == kNone) {
-      if (!create) return {kNone, 0};
-      *index = std::uint32_t(bits_.size());
+    return {(std::uint64_t(local[2] / 8) * blocks_[1] + local[1] / 8) * blocks_[0] + local[0] / 8,
+            unsigned((local[2] & 7) * 64 + (local[1] & 7) * 8 + (local[0] & 7)),
+            {origin_[0] + local[0] / 8 * 8, origin_[1] + local[1] / 8 * 8, origin_[2] + local[2] / 8 * 8}};
+  }
+
+  /// The block and bit of a key, creating its block if needed.
+  std::pair<std::uint32_t, unsigned> locate(const octomap::OcTreeKey& k) {
+    const Address a = address(k);
+    std::uint32_t& index = dense_.empty() ? sparse_.try_emplace(a.slot, kNone).first->second : dense_[a.slot];
+    if (index == kNone) {
+      index = std::uint32_t(bits_.size());
       bits_.push_back({});
-      block_corner_.push_back({origin_[0] + local[0] / 8 * 8, origin_[1] + local[1] / 8 * 8,
-                               origin_[2] + local[2] / 8 * 8});
+      block_corner_.push_back(a.corner);
     }
-    const unsigned bit = unsigned((local[2] & 7) * 64 + (local[1] & 7) * 8 + (local[0] & 7));
-    return {*index, bit};
+    return {index, a.bit};
   }
 
   int origin_[3];
