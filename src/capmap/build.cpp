@@ -63,7 +63,7 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
   const ArmConfig& ac = arm.config();
   h.base_link = ac.base_link;
   h.tip_link = ac.tip_link;
-  const Eigen::Vector3d rpy = ac.T_tip_sensor.linear().eulerAngles(2, 1, 0).reverse();
+  const Eigen::Vector3d rpy = rpy_of(ac.T_tip_sensor.linear());
   h.mount_xyz_rpy = {ac.T_tip_sensor.translation().x(), ac.T_tip_sensor.translation().y(),
                      ac.T_tip_sensor.translation().z(), rpy.x(), rpy.y(), rpy.z()};
   h.viewing_axis = ac.viewing_axis_sensor;

@@ -8,8 +8,17 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"
 
 namespace fvx::capmap {
+
+ArmConfig arm_config_of(const CapabilityHeader& h) {
+  ArmConfig config{h.base_link, h.tip_link};
+  const auto& m = h.mount_xyz_rpy;  // metres and radians
+  config.T_tip_sensor = pose_from_xyz_rpy(m[0], m[1], m[2], m[3], m[4], m[5]);
+  config.viewing_axis_sensor = h.viewing_axis;
+  return config;
+}
 
 DirectionSet::DirectionSet(int count) {
   FVX_ASSERT(count >= 1, "a direction set needs directions");

@@ -15,13 +15,23 @@ const io::Rgb kOccupiedGrey = {150, 150, 150};
 
 }  // namespace
 
-std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args) {
-  if (!args.has("bounds")) return std::nullopt;
-  const auto b = parse_double_list(args.get("bounds"), "--bounds (x0,y0,z0,x1,y1,z1)", 6);
+std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name) {
+  if (!args.has(name)) return std::nullopt;
+  const auto b = parse_double_list(args.get(name), "--" + name + " (x0,y0,z0,x1,y1,z1)", 6);
   const Eigen::AlignedBox3d box(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
   if (!(box.min().array() < box.max().array()).all())
-    throw UsageError("--bounds: the minimum must be below the maximum on every axis");
+    throw UsageError("--" + name + ": the minimum must be below the maximum on every axis");
   return box;
+}
+
+frontier_voids::Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds,
+                                     const voids::ClusterConfig& config, std::size_t* hull_faces) {
+  frontiers::FrontierSet frontier_set;
+  frontier_set.rebuild(map);
+  voids::VoidSet void_set;
+  void_set.rebuild(map);
+  if (hull_faces) *hull_faces = void_set.hull().planes.size();
+  return frontier_voids::analyse(map, frontier_set, &void_set, bounds, config);
 }
 
 Json bounds_json(const Eigen::AlignedBox3d& b) {

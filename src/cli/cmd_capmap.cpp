@@ -9,6 +9,7 @@
 #include "fvx/capmap/build.hpp"
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/io/visual.hpp"
 #include "report.hpp"
@@ -70,20 +71,10 @@ Json header_json(const capmap::CapabilityHeader& h) {
           {"fvx_version", h.fvx_version}};
 }
 
-/// T_tip_sensor from x, y, z (metres) and roll, pitch, yaw (radians): R = Rz(yaw) Ry(pitch) Rx(roll).
-Eigen::Isometry3d mount_pose(double x, double y, double z, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d T(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
-  T.translation() << x, y, z;
-  return T;
-}
-
 capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std::string& tip, const Args& args) {
   capmap::ArmConfig config{base, tip};
   if (args.has("mount")) {
-    const auto m = parse_double_list(args.get("mount"), "--mount (x,y,z,roll,pitch,yaw)", 6);
-    const double d = M_PI / 180.0;
-    config.T_tip_sensor = mount_pose(m[0], m[1], m[2], m[3] * d, m[4] * d, m[5] * d);
+    config.T_tip_sensor = parse_xyz_rpy_deg(args.get("mount"), "--mount");
   }
   if (args.has("axis")) {
     const Eigen::Vector3d axis = vec3(args, "axis");
@@ -187,11 +178,7 @@ int eval(const Args& args, Json& report) {
   if (args.positional.size() != 3) throw UsageError("fvx capmap eval: give a map and the arm's URDF");
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
   const auto& h = map.header();
-  capmap::ArmConfig config{h.base_link, h.tip_link};
-  const auto& m = h.mount_xyz_rpy;  // metres and radians
-  config.T_tip_sensor = mount_pose(m[0], m[1], m[2], m[3], m[4], m[5]);
-  config.viewing_axis_sensor = h.viewing_axis;
-  const capmap::Arm arm = capmap::Arm::from_urdf(args.positional[2], config);
+  const capmap::Arm arm = capmap::Arm::from_urdf(args.positional[2], capmap::arm_config_of(h));
   std::vector<std::string> warnings;
   if (arm.urdf_hash() != h.urdf_hash) warnings.push_back("the URDF differs from the one the map was built from");
   const int samples = int(args.integer("samples", 2000, 1, 100000000));

@@ -17,6 +17,7 @@ const std::vector<Command>& commands() {
       {kFrontiersSpec, run_frontiers},
       {kVoidsSpec, run_voids},
       {kCapmapSpec, run_capmap},
+      {kNbvSpec, run_nbv},
       {kSimulateSpec, run_simulate},
   };
   return table;

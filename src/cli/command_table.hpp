@@ -30,6 +30,8 @@ extern const CommandSpec kVoidsSpec;
 int run_voids(const Args& args);
 extern const CommandSpec kCapmapSpec;
 int run_capmap(const Args& args);
+extern const CommandSpec kNbvSpec;
+int run_nbv(const Args& args);
 extern const CommandSpec kSimulateSpec;
 int run_simulate(const Args& args);
 

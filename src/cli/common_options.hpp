@@ -23,4 +23,11 @@ std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::stri
 
 Json intrinsics_json(const io::Intrinsics& K);
 
+/// --sensor FILE, --depth-min, --depth-max and the intrinsics options with the image size:
+/// a depth camera for planning.
+std::vector<OptionSpec> depth_camera_options();
+/// The sensor file (default Kinect v1), then the flags on top. UsageError when invalid.
+io::DepthCamera parse_depth_camera(const Args& args, const std::string& command);
+Json depth_camera_json(const io::DepthCamera& camera);
+
 }  // namespace fvx::cli

@@ -1,5 +1,6 @@
 #include "fvx/core/pose.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fvx/core/error.hpp"
@@ -26,6 +27,28 @@ Eigen::Isometry3d pose_from_translation_quaternion(const Eigen::Vector3d& t, dou
 Eigen::Isometry3d parse_pose(const std::string& text, const std::string& what) {
   const std::vector<double> v = parse_double_list(text, what + " (x,y,z,qx,qy,qz,qw)", 7);
   return pose_from_translation_quaternion({v[0], v[1], v[2]}, v[3], v[4], v[5], v[6], what);
+}
+
+Eigen::Isometry3d pose_from_xyz_rpy(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d T(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
+  T.translation() << x, y, z;
+  return T;
+}
+
+Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& what) {
+  const std::vector<double> v = parse_double_list(text, what + " (x,y,z,roll,pitch,yaw)", 6);
+  const double d = M_PI / 180.0;
+  return pose_from_xyz_rpy(v[0], v[1], v[2], v[3] * d, v[4] * d, v[5] * d);
+}
+
+Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R) {
+  // R = Rz(yaw)·Ry(pitch)·Rx(roll): R(2,0) = −sin(pitch).
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  if (std::abs(R(2, 0)) > 1.0 - 1e-12) {  // gimbal lock: only roll ∓ yaw is defined; take yaw = 0
+    return {std::atan2(-R(1, 2), R(1, 1)), pitch, 0.0};
+  }
+  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
 }
 
 double rotation_angle_deg(const Eigen::Isometry3d& T) {

@@ -33,9 +33,7 @@ double number(const nlohmann::json& j, const char* key, const std::string& path)
   return j.at(key).get<double>();
 }
 
-}  // namespace
-
-Intrinsics read_intrinsics(const std::string& path) {
+nlohmann::json read_json_object(const std::string& path) {
   require_readable_file(path);
   std::ifstream in(path);
   nlohmann::json j;
@@ -45,7 +43,10 @@ Intrinsics read_intrinsics(const std::string& path) {
     throw FileError(path, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw FileError(path, "expected a JSON object");
+  return j;
+}
 
+Intrinsics intrinsics_from_json(const nlohmann::json& j, const std::string& path) {
   Intrinsics k;
   if (j.contains("intrinsic_matrix")) {  // Open3D layout, column-major
     const std::set<std::string> known = {"width", "height", "intrinsic_matrix"};
@@ -73,6 +74,33 @@ Intrinsics read_intrinsics(const std::string& path) {
   const auto problems = k.validate();
   if (!problems.empty()) throw FileError(path, problems.front());
   return k;
+}
+
+}  // namespace
+
+Intrinsics read_intrinsics(const std::string& path) { return intrinsics_from_json(read_json_object(path), path); }
+
+std::vector<std::string> DepthCamera::validate() const {
+  std::vector<std::string> problems = intrinsics.validate();
+  if (!std::isfinite(depth_min_m) || depth_min_m < 0.0) problems.push_back("depth_min_m must be >= 0 m");
+  if (!std::isfinite(depth_max_m) || !(depth_max_m > depth_min_m))
+    problems.push_back("depth_max_m must be finite and greater than depth_min_m");
+  return problems;
+}
+
+DepthCamera read_depth_camera(const std::string& path) {
+  nlohmann::json j = read_json_object(path);
+  DepthCamera camera;
+  for (const char* key : {"depth_min_m", "depth_max_m"}) {
+    if (!j.contains(key)) continue;
+    if (!j.at(key).is_number()) throw FileError(path, std::string("'") + key + "' must be a number");
+    (std::string(key) == "depth_min_m" ? camera.depth_min_m : camera.depth_max_m) = j.at(key).get<double>();
+    j.erase(key);
+  }
+  camera.intrinsics = intrinsics_from_json(j, path);
+  const auto problems = camera.validate();
+  if (!problems.empty()) throw FileError(path, problems.front());
+  return camera;
 }
 
 }  // namespace fvx::io

@@ -48,4 +48,70 @@ Eigen::Vector3d DenseGrid::center_of(const VoxelKey& k) const {
           (double(k.z) - 32768 + 0.5) * resolution_m_};
 }
 
+namespace {
+
+/// One pass of the 1-D squared distance transform (lower envelope of parabolas): f holds
+/// the input along a line, d receives min_q (p − q)² + f(q).
+void distance_1d(const std::vector<float>& f, std::vector<float>& d, std::vector<int>& v, std::vector<float>& z) {
+  const int n = int(f.size());
+  int k = 0;
+  int first = 0;
+  while (first < n && std::isinf(f[std::size_t(first)])) ++first;
+  if (first == n) {  // nothing along this line
+    std::fill(d.begin(), d.end(), INFINITY);
+    return;
+  }
+  v[0] = first;
+  z[0] = -INFINITY;
+  z[1] = INFINITY;
+  for (int q = first + 1; q < n; ++q) {
+    if (std::isinf(f[std::size_t(q)])) continue;
+    float s;
+    while (true) {
+      const int p = v[std::size_t(k)];
+      s = ((f[std::size_t(q)] + float(q) * float(q)) - (f[std::size_t(p)] + float(p) * float(p))) / (2.0f * float(q - p));
+      if (s <= z[std::size_t(k)] && k > 0) {
+        --k;
+        continue;
+      }
+      break;
+    }
+    ++k;
+    v[std::size_t(k)] = q;
+    z[std::size_t(k)] = s;
+    z[std::size_t(k) + 1] = INFINITY;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[std::size_t(k) + 1] < float(q)) ++k;
+    const int p = v[std::size_t(k)];
+    d[std::size_t(q)] = float(q - p) * float(q - p) + f[std::size_t(p)];
+  }
+}
+
+}  // namespace
+
+std::vector<float> squared_distance_to(const DenseGrid& grid, VoxelState state) {
+  const Eigen::Vector3i n = grid.size();
+  std::vector<float> dist(grid.cell_count());
+  for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = grid.state_at(i) == state ? 0.0f : INFINITY;
+  const std::size_t stride[3] = {1, std::size_t(n.x()), std::size_t(n.x()) * std::size_t(n.y())};
+  const int longest = n.maxCoeff();
+  std::vector<float> f(std::size_t(std::max(longest, 0))), d(f.size()), z(f.size() + 1);
+  std::vector<int> v(f.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    const int len = n[axis];
+    f.resize(std::size_t(len));
+    d.resize(std::size_t(len));
+    // Every line along `axis`: its start is any cell whose `axis` coordinate is 0.
+    for (std::size_t start = 0; start < dist.size(); ++start) {
+      if ((start / stride[axis]) % std::size_t(len) != 0) continue;
+      for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
+      distance_1d(f, d, v, z);
+      for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
+    }
+  }
+  return dist;
+}
+
 }  // namespace fvx::map

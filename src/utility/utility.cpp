@@ -1,7 +1,11 @@
 #include "fvx/utility/utility.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <thread>
 
 #include "fvx/core/error.hpp"
 
@@ -13,35 +17,119 @@ std::vector<std::string> Config::validate() const {
   return problems;
 }
 
-Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, const Config& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid utility::Config");
-  Field field;
-  field.util_m3.assign(grid.cell_count(), 0.0);
-  for (const auto& fv : a.frontier_voids) {
-    if (fv.enclosed()) continue;
-    const auto corners = a.void_clusters[std::size_t(fv.void_id)].corners();
-    const double u = fv.utility_m3;
-    for (const int id : fv.frontier_ids) {
-      for (const map::VoxelKey& f : a.frontier_clusters[std::size_t(id)].cells) {
-        if (!grid.contains(f)) continue;
-        const Eigen::Vector3d start = grid.center_of(f);
-        for (const Eigen::Vector3d& c : corners) {
-          const Eigen::Vector3d dir = start - c;
-          if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
-          ++field.vectors;
-          grid.walk(start, dir, config.sensor_range_m, [&](std::size_t index, map::VoxelState s) {
-            if (s != map::VoxelState::Free) return false;
-            field.util_m3[index] += u;
-            return true;
-          });
-        }
+namespace {
+
+using Slots = std::array<std::int32_t, kContributors>;
+
+/// One thread's share: utility in cells (u_i / R³, an integer, so that sums do not depend on
+/// the order of addition or the number of threads) and contributors per grid cell.
+struct Partial {
+  std::vector<std::uint64_t> util_cells;
+  std::vector<Slots> contributors;
+  std::size_t vectors = 0;
+};
+
+/// Algorithm 1 for one frontier-void: every corner, every frontier cell of its clusters.
+void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analysis& a, std::int32_t fv_index,
+                         double sensor_range_m, Partial& out) {
+  const auto& fv = a.frontier_voids[std::size_t(fv_index)];
+  const double R = grid.resolution_m();
+  const auto u = std::uint64_t(std::llround(fv.utility_m3 / (R * R * R)));
+  const auto corners = a.void_clusters[std::size_t(fv.void_id)].corners();
+  for (const int id : fv.frontier_ids) {
+    for (const map::VoxelKey& f : a.frontier_clusters[std::size_t(id)].cells) {
+      if (!grid.contains(f)) continue;
+      const Eigen::Vector3d start = grid.center_of(f);
+      for (const Eigen::Vector3d& c : corners) {
+        const Eigen::Vector3d dir = start - c;
+        if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
+        ++out.vectors;
+        grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
+          if (s != map::VoxelState::Free) return false;
+          out.util_cells[index] += u;
+          for (auto& slot : out.contributors[index]) {
+            if (slot == fv_index) break;
+            if (slot < 0) {
+              slot = fv_index;
+              break;
+            }
+          }
+          return true;
+        });
       }
     }
   }
-  for (const double v : field.util_m3) {
-    field.cells += v > 0.0;
-    field.max_m3 = std::max(field.max_m3, v);
+}
+
+}  // namespace
+
+Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, const Config& config) {
+  FVX_ASSERT(config.validate().empty(), "invalid utility::Config");
+  // Largest utility first (ties: lower index): a thread that takes frontier-voids in this
+  // order meets a cell's largest contributors first, and the merge keeps this order.
+  std::vector<std::int32_t> order;
+  for (std::size_t i = 0; i < a.frontier_voids.size(); ++i)
+    if (!a.frontier_voids[i].enclosed()) order.push_back(std::int32_t(i));
+  std::stable_sort(order.begin(), order.end(), [&](std::int32_t l, std::int32_t r) {
+    return a.frontier_voids[std::size_t(l)].utility_m3 > a.frontier_voids[std::size_t(r)].utility_m3;
+  });
+  std::vector<std::size_t> rank(a.frontier_voids.size(), 0);
+  for (std::size_t i = 0; i < order.size(); ++i) rank[std::size_t(order[i])] = i;
+
+  Slots none;
+  none.fill(-1);
+  const unsigned threads = std::max(
+      1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
+                             unsigned(std::max<std::size_t>(1, order.size()))));
+  std::vector<Partial> parts(threads);
+  std::atomic<std::size_t> next{0};
+  auto work = [&](Partial& part) {
+    part.util_cells.assign(grid.cell_count(), 0);
+    part.contributors.assign(grid.cell_count(), none);
+    for (std::size_t i = next++; i < order.size(); i = next++)
+      trace_frontier_void(grid, a, order[i], config.sensor_range_m, part);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, std::ref(parts[t]));
+  work(parts[0]);
+  for (auto& t : pool) t.join();
+
+  // Merge: sums of integers, and each cell's contributors from all threads in global order.
+  Field field;
+  Partial& total = parts[0];
+  for (unsigned t = 1; t < threads; ++t) {
+    const Partial& p = parts[t];
+    total.vectors += p.vectors;
+    for (std::size_t i = 0; i < total.util_cells.size(); ++i) {
+      if (p.util_cells[i] == 0) continue;
+      total.util_cells[i] += p.util_cells[i];
+      // Both lists are in global order: merge them, dropping repeats, keep the first slots.
+      const Slots& l = total.contributors[i];
+      const Slots& r = p.contributors[i];
+      Slots merged = none;
+      std::size_t li = 0, ri = 0, n = 0;
+      auto rank_of = [&](std::int32_t fv) { return fv < 0 ? std::numeric_limits<std::size_t>::max() : rank[std::size_t(fv)]; };
+      while (n < std::size_t(kContributors)) {
+        const std::int32_t a_fv = li < l.size() ? l[li] : -1, b_fv = ri < r.size() ? r[ri] : -1;
+        if (a_fv < 0 && b_fv < 0) break;
+        const bool take_left = rank_of(a_fv) <= rank_of(b_fv);
+        const std::int32_t fv = take_left ? a_fv : b_fv;
+        (take_left ? li : ri)++;
+        if (a_fv == b_fv) ++ri;  // one frontier-void is never split between threads; safe anyway
+        merged[n++] = fv;
+      }
+      total.contributors[i] = merged;
+    }
   }
+  const double R = grid.resolution_m(), cell_m3 = R * R * R;
+  field.vectors = total.vectors;
+  field.util_m3.resize(total.util_cells.size());
+  for (std::size_t i = 0; i < total.util_cells.size(); ++i) {
+    field.util_m3[i] = double(total.util_cells[i]) * cell_m3;
+    field.cells += total.util_cells[i] > 0;
+    field.max_m3 = std::max(field.max_m3, field.util_m3[i]);
+  }
+  field.contributors = std::move(total.contributors);
   return field;
 }
 

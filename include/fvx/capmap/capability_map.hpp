@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "fvx/capmap/arm.hpp"
+
 namespace fvx::capmap {
 
 /// N unit directions on a golden-angle spiral: d_i = (r cos φ_i, r sin φ_i, z_i) with
@@ -49,6 +51,9 @@ struct CapabilityHeader {
   std::uint32_t shard_index = 0, shard_count = 1;   ///< which voxels this file holds (z-slabs)
   std::string fvx_version;
 };
+
+/// The arm settings a map was built with (links, mount, viewing axis), to load its URDF again.
+ArmConfig arm_config_of(const CapabilityHeader& header);
 
 class CapabilityMap {
  public:

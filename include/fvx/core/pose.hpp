@@ -17,6 +17,16 @@ Eigen::Isometry3d pose_from_translation_quaternion(const Eigen::Vector3d& t, dou
 /// Parses "x,y,z,qx,qy,qz,qw" (metres, scalar-last quaternion) as given to `--pose`.
 Eigen::Isometry3d parse_pose(const std::string& text, const std::string& what);
 
+/// `T_a_b` from x, y, z (metres) and roll, pitch, yaw (radians): R = Rz(yaw)·Ry(pitch)·Rx(roll),
+/// the URDF convention.
+Eigen::Isometry3d pose_from_xyz_rpy(double x, double y, double z, double roll, double pitch, double yaw);
+
+/// Parses "x,y,z,roll,pitch,yaw" (metres, degrees) as given to `--base` and `--mount`.
+Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& what);
+
+/// Roll, pitch, yaw (radians) of a rotation: the inverse of pose_from_xyz_rpy's rotation.
+Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R);
+
 /// Angle of the rotation part in degrees, in [0, 180].
 double rotation_angle_deg(const Eigen::Isometry3d& T);
 

@@ -31,4 +31,19 @@ struct Intrinsics {
 /// Throws FileError naming the file and the problem.
 Intrinsics read_intrinsics(const std::string& path);
 
+/// A depth camera for planning and simulation: its pinhole model and the depths it measures.
+struct DepthCamera {
+  Intrinsics intrinsics;       ///< default Kinect v1
+  double depth_min_m = 0.5;    ///< nearer surfaces give no measurement (z, metres)
+  double depth_max_m = 4.0;    ///< farther surfaces give no measurement (z, metres); s_r
+
+  std::vector<std::string> validate() const;
+};
+
+/// Reads a sensor file: the fvx intrinsics layout plus optional "depth_min_m" and
+/// "depth_max_m", e.g. {"fx": 525, "fy": 525, "cx": 319.5, "cy": 239.5, "width": 640,
+/// "height": 480, "depth_min_m": 0.5, "depth_max_m": 4.0}. Unknown keys are refused.
+/// Throws FileError naming the file and the problem.
+DepthCamera read_depth_camera(const std::string& path);
+
 }  // namespace fvx::io

@@ -7,6 +7,8 @@
 /// starts at pos(f), goes along normalize(pos(f) − c) for at most s_r, and stops at the first
 /// cell that is not free; each cell it passes, f included, gains u_i. Cells with much
 /// utility see many voids through their frontiers: candidate viewpoints.
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,11 +19,20 @@ namespace fvx::utility {
 
 struct Config {
   double sensor_range_m = 4.0;  ///< s_r: the longest a utility ray goes, metres (Kinect v1: 4)
+  unsigned threads = 0;         ///< 0: all cores; the field is the same on any count
   std::vector<std::string> validate() const;
 };
 
+/// How many contributing frontier-voids a cell remembers (the largest by utility): the
+/// voids a sensor at the cell should be turned towards.
+constexpr int kContributors = 4;
+
 struct Field {
   std::vector<double> util_m3;  ///< per grid cell (DenseGrid index), the sum of u_i through it
+  /// Per grid cell, the indices (into Analysis::frontier_voids) of the kContributors
+  /// frontier-voids with the largest utility whose vectors pass it (ties: lower index), −1
+  /// for unused slots, largest first.
+  std::vector<std::array<std::int32_t, kContributors>> contributors;
   std::size_t vectors = 0;      ///< utility vectors traced
   std::size_t cells = 0;        ///< cells with utility > 0
   double max_m3 = 0.0;

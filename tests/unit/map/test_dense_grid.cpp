@@ -66,3 +66,39 @@ TEST(DenseGrid, WalksEqualTheOctreeRayCast) {
 
 }  // namespace
 }  // namespace fvx::map
+
+namespace fvx::map {
+namespace {
+
+// The separable distance transform against the brute-force minimum over every occupied cell.
+TEST(DenseGrid, SquaredDistanceToOccupiedEqualsBruteForce) {
+  std::mt19937 rng(5);
+  OccupancyMap map(0.1);
+  std::uniform_int_distribution<int> cell(-12, 12);
+  for (int i = 0; i < 60; ++i)
+    map.set_state({std::uint16_t(32768 + cell(rng)), std::uint16_t(32768 + cell(rng)), std::uint16_t(32768 + cell(rng))},
+                  VoxelState::Occupied);
+  const DenseGrid grid(map, Eigen::AlignedBox3d(Eigen::Vector3d(-1.0, -1.3, -0.9), Eigen::Vector3d(1.1, 0.9, 1.2)));
+  std::vector<Eigen::Vector3i> occupied;
+  for (std::size_t i = 0; i < grid.cell_count(); ++i)
+    if (grid.state_at(i) == VoxelState::Occupied) {
+      const VoxelKey k = grid.key(i);
+      occupied.emplace_back(k.x, k.y, k.z);
+    }
+  ASSERT_GT(occupied.size(), 20u);
+  const std::vector<float> d = squared_distance_to(grid, VoxelState::Occupied);
+  for (std::size_t i = 0; i < grid.cell_count(); ++i) {
+    const VoxelKey k = grid.key(i);
+    int best = std::numeric_limits<int>::max();
+    for (const auto& o : occupied) best = std::min(best, (o - Eigen::Vector3i(k.x, k.y, k.z)).squaredNorm());
+    ASSERT_EQ(d[i], float(best)) << "cell " << i;
+  }
+  // No cell in that state: infinity everywhere.
+  OccupancyMap free_only(0.1);
+  free_only.set_state({32768, 32768, 32768}, VoxelState::Free);
+  const DenseGrid g2(free_only, Eigen::AlignedBox3d(Eigen::Vector3d(-0.3, -0.3, -0.3), Eigen::Vector3d(0.3, 0.3, 0.3)));
+  for (const float v : squared_distance_to(g2, VoxelState::Occupied)) ASSERT_TRUE(std::isinf(v));
+}
+
+}  // namespace
+}  // namespace fvx::map

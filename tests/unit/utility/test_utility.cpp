@@ -4,6 +4,7 @@
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/utility/utility.hpp"
+#include "scan_scene.hpp"
 
 namespace fvx::utility {
 namespace {
@@ -53,20 +54,14 @@ TEST(Utility, RaysLeaveTheVoidThroughTheFrontierAndStopAtTheFirstNonFreeCell) {
 // later remove viewpoints) and leave through the opening: above the lid, the most useful
 // cells lie over the opening.
 TEST(Utility, OnTheClosedBoxTheBestCellsLookThroughTheOpening) {
-  const sim::Scene scene = sim::builtin_scene("closed-box");
-  const auto caster = sim::make_ray_caster(scene.mesh);
   // A scan from the side and above: the lid and its opening are seen, the interior is not.
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   const Eigen::Vector3d eye(0.1, -0.02, 1.0), target(0.77, -0.02, 0.2);
   const Eigen::Vector3d z = (target - eye).normalized(), x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
   T.linear() << x, z.cross(x), z;
   T.translation() = eye;
-  const sim::Frame frame = sim::render(*caster, T, sim::SensorConfig{});
   map::OccupancyMap map(0.02);
-  std::vector<Eigen::Vector3f> points;
-  for (const auto& p : frame.points_sensor)
-    if (p.allFinite()) points.push_back((T * p.cast<double>()).cast<float>());
-  map.integrate(points, T.translation().cast<float>());
+  test::integrate_views(map, sim::builtin_scene("closed-box"), {T});
   frontiers::FrontierSet frontier_set;
   frontier_set.rebuild(map);
   voids::VoidSet void_set;
@@ -74,8 +69,17 @@ TEST(Utility, OnTheClosedBoxTheBestCellsLookThroughTheOpening) {
   const Eigen::AlignedBox3d bounds(Eigen::Vector3d(0.52, -0.27, 0.0), Eigen::Vector3d(1.02, 0.23, 1.2));
   const auto a = frontier_voids::analyse(map, frontier_set, &void_set, bounds, voids::ClusterConfig{});
   const map::DenseGrid grid(map, bounds);
-  const Field field = accumulate(grid, a, Config{});
+  Config one_thread;
+  one_thread.threads = 1;
+  const Field field = accumulate(grid, a, one_thread);
   ASSERT_GT(field.cells, 100u);
+  // Threads split the frontier-voids; the field and the contributors do not change.
+  Config three;
+  three.threads = 3;
+  const Field threaded = accumulate(grid, a, three);
+  EXPECT_EQ(threaded.util_m3, field.util_m3);
+  EXPECT_EQ(threaded.contributors, field.contributors);
+  EXPECT_EQ(threaded.vectors, field.vectors);
   std::size_t best = 0;
   double best_above_lid = 0.0;
   for (std::size_t i = 0; i < field.util_m3.size(); ++i) {

@@ -1,0 +1,125 @@
+#pragma once
+/// \file
+/// Stage `nbv` (paper §IV-C, Algorithm 1 and Eq. 3): the next best view. The utility field
+/// (Algorithm 1) is pruned to cells a sensor can occupy — free, clear of obstacles, inside
+/// the view bounds, reachable by the arm according to its capability map placed at
+/// T_world_base — and sorted by utility; orientations are sampled at the cells in that order,
+/// those the arm reaches are scored by tracing the field of view (U = void cells seen), the
+/// search stops after N valid poses, and c* = argmax U (Eq. 3).
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fvx/capmap/capability_map.hpp"
+#include "fvx/capmap/viewing_ik.hpp"
+#include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/io/intrinsics.hpp"
+
+namespace fvx::nbv {
+
+enum class Strategy {
+  FrontierVoid,  ///< the paper's method
+  Exhaustive,    ///< reference: every reachable voxel and direction of the capability map, scored alike
+  Frontier,      ///< reference: plain frontier-based — view the largest frontier cluster, no voids
+};
+const char* to_string(Strategy s);
+/// "frontier-void", "exhaustive", "frontier"; UsageError otherwise.
+Strategy parse_strategy(const std::string& name);
+
+/// Where the arm stands and what it can reach. Without one, the sensor flies free.
+struct Reach {
+  const capmap::CapabilityMap* capmap = nullptr;                 ///< required
+  Eigen::Isometry3d T_world_base = Eigen::Isometry3d::Identity();  ///< the capability map's base in the world
+  /// Optional: the arm the map was built for. Each pose must then pass IK, which gives its
+  /// joint configuration.
+  const capmap::Arm* arm = nullptr;
+  capmap::IkConfig ik;
+};
+
+struct Config {
+  Strategy strategy = Strategy::FrontierVoid;
+  io::DepthCamera sensor;             ///< intrinsics and depths; depth_max_m is s_r. Default Kinect v1
+  int ray_cols = 80;                  ///< field-of-view rays across the image (decimated pixel grid)
+  int ray_rows = 60;                  ///< … and down it
+  int valid_poses = 50;               ///< N: the search stops after this many valid poses (paper: 50)
+  int orientations_per_cell = 2;      ///< orientations sampled at each candidate cell
+  double jitter_deg = 5.0;            ///< tilt of sampled axes around their target, degrees
+  double clearance_m = 0.1;           ///< no occupied cell this close to a viewpoint, metres
+  /// Cells nearer than this to a viewpoint that already gave a valid pose are passed over,
+  /// so that the N poses spread over the useful region instead of piling up in its densest
+  /// cells, metres. 0: every cell in utility order.
+  double min_separation_m = 0.15;
+  /// The sensor stays in this box (metres); default: the box of the map's known cells.
+  std::optional<Eigen::AlignedBox3d> view_bounds_m;
+  int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
+  int top = 10;                       ///< ranked views reported
+  std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
+  unsigned threads = 0;               ///< scoring threads; 0: all cores
+
+  std::vector<std::string> validate() const;
+};
+
+struct View {
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  std::size_t void_cells_seen = 0;       ///< U_i
+  std::size_t frontier_cells_seen = 0;   ///< strategy frontier: the largest frontier cluster's cells seen
+  double accumulated_utility_m3 = 0.0;   ///< util(c) at the viewpoint's cell (frontier: rays, not m³)
+  /// Void clusters the view sees: (void id, cells seen), most cells first.
+  std::vector<std::pair<int, std::size_t>> voids_seen;
+  /// The frontier-voids whose utility reached the viewpoint's cell (Analysis indices),
+  /// largest first (at most utility::kContributors).
+  std::vector<int> utility_from;
+  Eigen::VectorXd joints_rad;            ///< IK configuration when an arm is given, else empty
+  std::size_t pose_index = 0;            ///< order in which the pose was generated
+};
+
+/// What each step removed or kept, so a user can see why a region got no view.
+struct Pruning {
+  std::size_t utility_cells = 0;            ///< cells with utility > 0 (exhaustive: capability-map voxels)
+  std::size_t not_free = 0;
+  std::size_t outside_view_bounds = 0;
+  std::size_t too_close_to_obstacle = 0;    ///< an occupied cell within clearance_m
+  std::size_t unreachable_position = 0;     ///< no reachable direction in the capability map there
+  std::size_t candidate_cells = 0;          ///< left after pruning, sorted by utility
+  std::size_t too_near_a_tried_cell = 0;    ///< passed over: within min_separation_m of a viewpoint
+  std::size_t cells_tried = 0;              ///< visited in that order until N valid poses
+  std::size_t orientations_sampled = 0;
+  std::size_t unreachable_orientation = 0;  ///< the capability map has no bit for the direction
+  std::size_t ik_failed = 0;                ///< the map's bit was set but IK missed the exact pose
+  std::size_t valid_poses = 0;              ///< scored by ray tracing
+  std::size_t culled = 0;                   ///< exhaustive: poses with no void cluster in their frustum (U = 0)
+  std::size_t seeing_nothing = 0;           ///< valid poses with U = 0
+};
+
+struct Timing {
+  double grid_s = 0, accumulation_s = 0, pruning_s = 0, sampling_s = 0, scoring_s = 0, total_s = 0;
+  std::uint64_t cells_visited = 0;  ///< by the field-of-view rays
+  std::size_t rays = 0;             ///< field-of-view rays traced
+};
+
+/// A cell of the utility field, for pictures and clouds (the paper's Figure 4).
+struct UtilityCell {
+  Eigen::Vector3d center_m;
+  double utility_m3 = 0.0;
+  bool kept = false;  ///< survived pruning
+};
+
+struct Result {
+  std::vector<View> views;       ///< ranked: U descending, then generation order; at most `top`
+  std::size_t poses_scored = 0;
+  Pruning pruning;
+  Timing timing;
+  std::vector<UtilityCell> utility_field;
+  std::size_t utility_vectors = 0;
+  std::string reason;            ///< why `views` is empty; empty otherwise
+};
+
+/// Selects the next best views for the map analysed in `analysis` (frontiers, voids and
+/// frontier-voids within the search space). Deterministic for a given seed, on any number
+/// of threads.
+Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
+              const std::optional<Reach>& reach, const Config& config);
+
+}  // namespace fvx::nbv

@@ -1,0 +1,63 @@
+#pragma once
+/// \file
+/// Stage `viewpoints`, part 1: the sensor's field of view traced through the map (paper
+/// §IV-C). U_i of a pose = the distinct void cells its rays cross; rays of a decimated pixel
+/// grid pass free and unknown cells and stop at an occupied cell, at the depth limit or at
+/// the grid's edge (ARCHITECTURE.md §3). An unknown cell may hide a surface, so U_i is what
+/// the view can reveal at best. A ray that ends on an occupied cell nearer than the sensor's
+/// minimum depth measures nothing (a Kinect returns no depth there) and reveals nothing.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "fvx/io/intrinsics.hpp"
+#include "fvx/map/dense_grid.hpp"
+
+namespace fvx::viewpoints {
+
+/// Rays through `cols` × `rows` pixels spread evenly over the image (pixel centres of the
+/// decimated grid), sensor optical frame, scaled to z = 1 so that `depth · ray` is the point
+/// at depth z.
+std::vector<Eigen::Vector3d> ray_fan(const io::Intrinsics& K, int cols, int rows);
+
+/// R_world_sensor whose optical axis (z) is `direction_world` (any length), turned by
+/// `roll_rad` about it. Roll 0 keeps the image upright: its −y axis as close to world +z as
+/// the direction allows (looking straight up or down, world +x stands in).
+Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_rad);
+
+/// Counts the target cells (void cells, or a frontier cluster's cells) a pose sees.
+class FovScorer {
+ public:
+  /// `target`: per grid cell (DenseGrid index), non-zero where a cell counts. The grid must
+  /// outlive the scorer.
+  FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target, std::vector<Eigen::Vector3d> rays_sensor,
+            double depth_max_m, double depth_min_m = 0.0);
+
+  /// Scratch space of one thread: a visit stamp per grid cell, so each cell counts once.
+  struct Workspace {
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t current = 0;
+    std::vector<std::size_t> ray_targets;  ///< targets of the ray being traced
+  };
+
+  struct Score {
+    std::size_t targets_seen = 0;       ///< U: distinct target cells crossed
+    std::uint64_t cells_visited = 0;    ///< cells the rays walked (for the cells/s figure)
+  };
+  /// Traces every ray from `T_world_sensor`; when `seen` is given, it receives the grid
+  /// indices of the target cells seen, ascending.
+  Score score(const Eigen::Isometry3d& T_world_sensor, Workspace& workspace,
+              std::vector<std::size_t>* seen = nullptr) const;
+
+  const map::DenseGrid& grid() const { return grid_; }
+  std::size_t ray_count() const { return rays_sensor_.size(); }
+
+ private:
+  const map::DenseGrid& grid_;
+  std::vector<std::uint8_t> target_;
+  std::vector<Eigen::Vector3d> rays_sensor_;
+  double depth_max_m_;
+  double depth_min_m_;
+};
+
+}  // namespace fvx::viewpoints

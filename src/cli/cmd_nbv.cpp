@@ -1,0 +1,300 @@
+// fvx nbv — a map (+ an arm's capability map) → the ranked next best views (paper §IV-C,
+// Algorithm 1 and Eq. 3).
+#include <cmath>
+#include <limits>
+
+#include "analysis_output.hpp"
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
+#include "fvx/core/pose.hpp"
+#include "fvx/io/visual.hpp"
+#include "fvx/nbv/nbv.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kNbvSpec = {
+    "nbv",
+    "MAP.bt|MAP.ot (--capmap ARM.fcm [--base POSE] | --no-capmap) [-o VIEWS.json] [options]",
+    "the next best views: utility vectors, pruning by the arm's reach, U by ray tracing (Eq. 3)",
+    options({{
+                 {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
+                 {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)"},
+                 {"base", 0, "x,y,z,roll,pitch,yaw", "T_world_base: where the capability map's base stands, "
+                                                     "metres and degrees (default 0,0,0,0,0,0)"},
+                 {"no-capmap", 0, nullptr, "a free-flying sensor: no reachability constraint"},
+                 {"arm", 0, "URDF", "the arm the capability map was built for: each view then needs IK, "
+                                    "which gives its joint configuration"},
+                 {"strategy", 0, "NAME", "frontier-void (default, the paper's), exhaustive (every reachable "
+                                         "voxel and direction of the capability map) or frontier (view the "
+                                         "largest frontier cluster)"},
+                 {"top", 'n', "N", "ranked views to report (default 10)"},
+                 {"poses", 'N', "N", "stop after N valid poses (default 50, as in the paper)"},
+                 {"orientations", 0, "K", "orientations sampled per candidate cell (default 2)"},
+                 {"separation", 0, "M", "pass over cells nearer than M to a viewpoint already used, metres "
+                                        "(default 0.15; 0: every cell in utility order)"},
+                 {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
+                 {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
+                 {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
+                 {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)"},
+                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)"},
+                 {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
+                                                         "box of the known cells)"},
+                 {"min-fit-score", 0, "S", "void clusters keep a fit score (Eq. 2) at or above S (default 0.7)"},
+                 {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)"},
+                 {"threads", 0, "N", "scoring threads (default 0: all cores)"},
+             },
+             depth_camera_options(),
+             {
+                 {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
+                                              "yellow, green (high); pruned cells grey"},
+                 {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view"},
+                 {"timing", 0, nullptr, "add the search time split (grid, accumulation, pruning, sampling, "
+                                        "scoring) and ray-casting speed to the report"},
+                 {"help", 'h', nullptr, "show this help"},
+             }})};
+
+namespace {
+
+io::Rgb ramp(double t) {  // red → yellow → green, as the paper's Figure 4
+  t = std::clamp(t, 0.0, 1.0);
+  return t < 0.5 ? io::Rgb{230, std::uint8_t(230 * 2 * t), 30} : io::Rgb{std::uint8_t(230 * 2 * (1 - t)), 200, 30};
+}
+
+void write_utility_cloud(const std::string& path, const nbv::Result& r) {
+  double max_kept = 0.0;
+  for (const auto& c : r.utility_field)
+    if (c.kept) max_kept = std::max(max_kept, c.utility_m3);
+  std::vector<Eigen::Vector3f> points;
+  std::vector<io::Rgb> colors;
+  for (const auto& c : r.utility_field) {
+    points.push_back(c.center_m.cast<float>());
+    colors.push_back(c.kept ? ramp(c.utility_m3 / max_kept) : io::Rgb{170, 170, 170});
+  }
+  io::write_colored_cloud(path, points, colors);
+}
+
+void write_utility_picture(const std::string& path, const map::OccupancyMap& map, const frontier_voids::Analysis& a,
+                           const nbv::Result& r) {
+  std::vector<io::PictureLayer> layers;
+  io::PictureLayer occupied{"occupied (lighter is higher)", {150, 150, 150}, {}, false, true};
+  for (const auto& c : map.occupied_centers()) occupied.centers_m.push_back(c.cast<double>());
+  layers.push_back(std::move(occupied));
+  io::PictureLayer voids{"void", {140, 60, 200}, {}, true, false};
+  for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
+  layers.push_back(std::move(voids));
+  double max_kept = 0.0;
+  for (const auto& c : r.utility_field)
+    if (c.kept) max_kept = std::max(max_kept, c.utility_m3);
+  io::PictureLayer pruned{"utility, pruned", {200, 200, 200}, {}, true, false};
+  io::PictureLayer low{"utility low", ramp(0.0), {}, false, false}, mid{"utility medium", ramp(0.5), {}, false, false},
+      high{"utility high", ramp(1.0), {}, false, false};
+  for (const auto& c : r.utility_field) {
+    if (!c.kept) {
+      pruned.centers_m.push_back(c.center_m);
+      continue;
+    }
+    const double t = c.utility_m3 / max_kept;
+    (t < 1.0 / 3 ? low : t < 2.0 / 3 ? mid : high).centers_m.push_back(c.center_m);
+  }
+  for (auto* layer : {&pruned, &low, &mid, &high}) layers.push_back(std::move(*layer));
+  io::PictureLayer best{"best view", {30, 90, 230}, {}, false, false};
+  if (!r.views.empty()) {
+    // The viewpoint and its optical axis for half a metre.
+    const Eigen::Isometry3d& T = r.views.front().T_world_sensor;
+    for (double s = 0.0; s <= 0.5; s += map.resolution_m()) best.centers_m.push_back(T * Eigen::Vector3d(0, 0, s));
+  }
+  layers.push_back(std::move(best));
+  io::write_top_view_png(path, map.resolution_m(), layers);
+}
+
+Json view_json(const nbv::View& v, int rank, double R, const frontier_voids::Analysis& a,
+               const std::vector<std::string>& joint_names, nbv::Strategy strategy) {
+  const Eigen::Isometry3d& T = v.T_world_sensor;
+  const Eigen::Vector3d rpy = rpy_of(T.linear()) * 180.0 / M_PI;
+  Json j = {{"rank", rank}};
+  const Json pose = pose_json(T);
+  j["position_m"] = pose["position_m"];
+  j["quaternion_xyzw"] = pose["quaternion_xyzw"];
+  j["rpy_deg"] = vec_json(rpy);
+  j["viewing_direction"] = vec_json(T.linear().col(2));
+  if (v.joints_rad.size() > 0) {
+    Json joints = Json::object();
+    for (int i = 0; i < v.joints_rad.size(); ++i) joints[joint_names[std::size_t(i)]] = v.joints_rad[i];
+    j["joints_rad"] = joints;
+  } else {
+    j["joints_rad"] = nullptr;
+  }
+  j["void_cells_seen"] = v.void_cells_seen;
+  j["utility_dm3"] = frontier_voids::to_dm3(double(v.void_cells_seen) * R * R * R);  // as fvx voids
+  if (strategy == nbv::Strategy::Frontier) {
+    j["frontier_cells_seen"] = v.frontier_cells_seen;
+    j["frontier_rays_through_cell"] = v.accumulated_utility_m3;
+  } else {
+    j["accumulated_utility_dm3"] = frontier_voids::to_dm3(v.accumulated_utility_m3);
+  }
+  Json serves = Json::array();
+  for (const auto& [void_id, cells] : v.voids_seen)
+    serves.push_back({{"void_id", void_id}, {"cells_seen", cells},
+                      {"void_cells", a.void_clusters[std::size_t(void_id)].cells.size()}});
+  j["voids_seen"] = serves;
+  Json from = Json::array();
+  for (const int fv : v.utility_from)
+    from.push_back({{"frontier_void", fv}, {"void_id", a.frontier_voids[std::size_t(fv)].void_id},
+                    {"utility_dm3", frontier_voids::to_dm3(a.frontier_voids[std::size_t(fv)].utility_m3)}});
+  j["utility_from"] = from;
+  j["pose_index"] = v.pose_index;
+  return j;
+}
+
+Json pruning_json(const nbv::Pruning& p) {
+  return {{"utility_cells", p.utility_cells},
+          {"not_free", p.not_free},
+          {"outside_view_bounds", p.outside_view_bounds},
+          {"too_close_to_obstacle", p.too_close_to_obstacle},
+          {"unreachable_position", p.unreachable_position},
+          {"candidate_cells", p.candidate_cells},
+          {"too_near_a_tried_cell", p.too_near_a_tried_cell},
+          {"cells_tried", p.cells_tried},
+          {"orientations_sampled", p.orientations_sampled},
+          {"unreachable_orientation", p.unreachable_orientation},
+          {"ik_failed", p.ik_failed},
+          {"valid_poses", p.valid_poses},
+          {"culled_no_void_in_frustum", p.culled},
+          {"seeing_no_void", p.seeing_nothing}};
+}
+
+std::pair<int, int> parse_rays(const Args& args) {
+  if (!args.has("rays")) return {80, 60};
+  const std::string text = args.get("rays");
+  const auto x = text.find('x');
+  if (x == std::string::npos) throw UsageError("--rays '" + text + "': expected COLSxROWS, e.g. 80x60");
+  return {int(parse_int_in(text.substr(0, x), "--rays columns", 1, 4096)),
+          int(parse_int_in(text.substr(x + 1), "--rays rows", 1, 4096))};
+}
+
+}  // namespace
+
+int run_nbv(const Args& args) {
+  if (args.positional.size() != 1)
+    throw UsageError("fvx nbv: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
+  if (args.has("capmap") == args.has("no-capmap"))
+    throw UsageError("fvx nbv: give --capmap FILE.fcm (with --base) for an arm, or --no-capmap for a free-flying sensor");
+  if (args.has("no-capmap") && (args.has("base") || args.has("arm")))
+    throw UsageError("fvx nbv: --base and --arm need --capmap");
+  const auto max_int = std::numeric_limits<int>::max();
+  nbv::Config config;
+  config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
+  config.sensor = parse_depth_camera(args, "nbv");
+  std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
+  config.top = int(args.integer("top", config.top, 1, max_int));
+  config.valid_poses = int(args.integer("poses", config.valid_poses, 1, max_int));
+  config.orientations_per_cell = int(args.integer("orientations", config.orientations_per_cell, 1, 10000));
+  config.jitter_deg = args.number("jitter", config.jitter_deg, 0.0, 90.0);
+  config.min_separation_m = args.number("separation", config.min_separation_m, 0.0, 10.0);
+  config.clearance_m = args.number("clearance", config.clearance_m, 0.0, 2.0);
+  config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
+  config.view_bounds_m = parse_bounds(args, "view-bounds");
+  config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  config.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  const auto bounds = parse_bounds(args);
+  voids::ClusterConfig cluster_config;
+  cluster_config.min_fit_score = args.number("min-fit-score", cluster_config.min_fit_score, 0.0, 1.0, true);
+  cluster_config.seed = config.seed;
+  const Eigen::Isometry3d T_world_base =
+      args.has("base") ? parse_xyz_rpy_deg(args.get("base"), "--base") : Eigen::Isometry3d::Identity();
+  if (config.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
+    throw UsageError("fvx nbv: --strategy exhaustive enumerates a capability map: give --capmap");
+  for (const char* path : {"utility-cloud", "picture"})
+    if (args.has(path) && args.get(path).empty()) throw UsageError(std::string("--") + path + ": empty file name");
+
+  // Inputs first, so that a bad file fails before any work.
+  const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
+  std::optional<capmap::CapabilityMap> capability_map;
+  std::optional<capmap::Arm> arm;
+  std::optional<nbv::Reach> reach;
+  if (args.has("capmap")) {
+    capability_map = capmap::CapabilityMap::load(args.get("capmap"));
+    if (capability_map->header().shard_count != 1)
+      throw UsageError("fvx nbv: " + args.get("capmap") + " is shard " +
+                       std::to_string(capability_map->header().shard_index) + " of " +
+                       std::to_string(capability_map->header().shard_count) + "; merge the shards first (fvx capmap merge)");
+    if (args.has("arm")) {
+      arm = capmap::Arm::from_urdf(args.get("arm"), capmap::arm_config_of(capability_map->header()));
+      if (arm->urdf_hash() != capability_map->header().urdf_hash)
+        throw Error("fvx nbv: " + args.get("capmap") + " was built from another URDF than " + args.get("arm") +
+                    " (hash " + capability_map->header().urdf_hash + " vs " + arm->urdf_hash() +
+                    "); rebuild it with fvx capmap build");
+    }
+    reach = nbv::Reach{&*capability_map, T_world_base, arm ? &*arm : nullptr, {}};
+    reach->ik.position_tolerance_m = capability_map->header().position_tolerance_m;
+    reach->ik.angle_tolerance_rad = capability_map->header().angle_tolerance_rad;
+  }
+
+  const frontier_voids::Analysis a = analyse_map(map, bounds, cluster_config);
+  const nbv::Result r = nbv::select(map, a, reach, config);
+  if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);
+  if (args.has("picture")) write_utility_picture(args.get("picture"), map, a, r);
+
+  const double R = map.resolution_m();
+  Json report = new_report("nbv");
+  report["config"] = {{"strategy", nbv::to_string(config.strategy)},
+                      {"sensor", depth_camera_json(config.sensor)},
+                      {"rays", {config.ray_cols, config.ray_rows}},
+                      {"valid_poses", config.valid_poses},
+                      {"orientations_per_cell", config.orientations_per_cell},
+                      {"jitter_deg", config.jitter_deg},
+                      {"clearance_m", config.clearance_m},
+                      {"min_separation_m", config.min_separation_m},
+                      {"exhaustive_rolls", config.exhaustive_rolls},
+                      {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
+                      {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
+                      {"min_fit_score", cluster_config.min_fit_score},
+                      {"seed", config.seed},
+                      {"top", config.top},
+                      {"T_world_base", reach ? pose_json(T_world_base) : Json(nullptr)}};
+  Json capmap_json = nullptr;
+  if (capability_map) {
+    const auto& h = capability_map->header();
+    capmap_json = {{"file", args.get("capmap")}, {"base_link", h.base_link}, {"tip_link", h.tip_link},
+                   {"urdf_hash", h.urdf_hash},   {"voxel_m", h.voxel_m},     {"directions", h.directions}};
+  }
+  report["inputs"] = {{"map", args.positional[0]},
+                      {"resolution_m", R},
+                      {"capmap", capmap_json},
+                      {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
+  Json views = Json::array();
+  for (std::size_t i = 0; i < r.views.size(); ++i)
+    views.push_back(view_json(r.views[i], int(i + 1), R, a, arm ? arm->joint_names() : std::vector<std::string>{},
+                              config.strategy));
+  const std::size_t open = std::size_t(std::count_if(a.frontier_voids.begin(), a.frontier_voids.end(),
+                                                     [](const auto& fv) { return !fv.enclosed(); }));
+  Json results = {{"bounds_m", bounds_json(a.bounds_m)},
+                  {"void_cells", a.void_cells.size()},
+                  {"void_clusters", a.void_clusters.size()},
+                  {"frontier_cells", a.frontier_cells.size()},
+                  {"frontier_voids_open", open},
+                  {"utility_vectors", r.utility_vectors},
+                  {"poses_scored", r.poses_scored},
+                  {"best_void_cells_seen", r.views.empty() ? 0 : r.views.front().void_cells_seen},
+                  {"best_utility_dm3", r.views.empty() ? 0.0 : views.front()["utility_dm3"].get<double>()},
+                  {"reason", r.reason.empty() ? Json(nullptr) : Json(r.reason)},
+                  {"pruning", pruning_json(r.pruning)},
+                  {"views", views}};
+  if (args.has("timing")) {
+    const auto& t = r.timing;
+    results["timing_s"] = {{"grid", t.grid_s},         {"accumulation", t.accumulation_s}, {"pruning", t.pruning_s},
+                           {"sampling", t.sampling_s}, {"scoring", t.scoring_s},           {"total", t.total_s},
+                           {"rays", t.rays},           {"cells_visited", t.cells_visited},
+                           {"cells_per_s", t.scoring_s > 0 ? double(t.cells_visited) / t.scoring_s : 0.0}};
+  }
+  report["results"] = results;
+  Json warnings = a.warnings;
+  if (!r.reason.empty()) warnings.push_back(r.reason);
+  report["warnings"] = warnings;
+  write_report(report, args.has("output") ? args.get("output") : "");
+  return 0;
+}
+
+}  // namespace fvx::cli

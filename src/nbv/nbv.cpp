@@ -1,0 +1,182 @@
+#include "fvx/nbv/nbv.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "fvx/core/error.hpp"
+#include "fvx/viewpoints/orientations.hpp"
+#include "search.hpp"
+
+namespace fvx::nbv {
+
+const char* to_string(Strategy s) {
+  switch (s) {
+    case Strategy::FrontierVoid: return "frontier-void";
+    case Strategy::Exhaustive: return "exhaustive";
+    case Strategy::Frontier: return "frontier";
+  }
+  return "?";
+}
+
+Strategy parse_strategy(const std::string& name) {
+  for (Strategy s : {Strategy::FrontierVoid, Strategy::Exhaustive, Strategy::Frontier})
+    if (name == to_string(s)) return s;
+  throw UsageError("--strategy '" + name + "': expected frontier-void, exhaustive or frontier");
+}
+
+std::vector<std::string> Config::validate() const {
+  std::vector<std::string> problems = sensor.validate();
+  if (ray_cols < 1 || ray_rows < 1) problems.push_back("ray_cols and ray_rows must be >= 1");
+  if (valid_poses < 1) problems.push_back("valid_poses (N) must be >= 1");
+  if (orientations_per_cell < 1) problems.push_back("orientations_per_cell must be >= 1");
+  if (!(jitter_deg >= 0.0 && jitter_deg <= 90.0)) problems.push_back("jitter_deg must be in [0, 90]");
+  if (!(min_separation_m >= 0.0 && min_separation_m <= 10.0)) problems.push_back("min_separation_m must be in [0, 10] m");
+  if (!(clearance_m >= 0.0 && clearance_m <= 2.0)) problems.push_back("clearance_m must be in [0, 2] m");
+  if (view_bounds_m && (view_bounds_m->isEmpty() || !view_bounds_m->min().allFinite() || !view_bounds_m->max().allFinite()))
+    problems.push_back("view_bounds_m must be a finite, non-empty box");
+  if (exhaustive_rolls < 1) problems.push_back("exhaustive_rolls must be >= 1");
+  if (top < 1) problems.push_back("top must be >= 1");
+  return problems;
+}
+
+namespace detail {
+
+// The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
+// util(c) until N valid poses, c* = argmax U (Eq. 3).
+Result select_frontier_void(Search& s, Result result) {
+  auto t0 = Clock::now();
+  utility::Config utility_config;
+  utility_config.sensor_range_m = s.config.sensor.depth_max_m;  // s_r
+  utility_config.threads = s.config.threads;
+  const utility::Field field = utility::accumulate(s.grid, s.a, utility_config);
+  result.utility_vectors = field.vectors;
+  result.timing.accumulation_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  Pruning& pruning = result.pruning;
+  std::vector<std::size_t> candidates;
+  std::vector<std::uint8_t> kept(s.grid.cell_count(), 0);
+  for (std::size_t i = 0; i < field.util_m3.size(); ++i) {
+    if (!(field.util_m3[i] > 0.0)) continue;
+    ++pruning.utility_cells;
+    const map::VoxelKey k = s.grid.key(i);
+    if (!s.keep_position(k, s.grid.center_of(k), pruning)) continue;
+    candidates.push_back(i);
+    kept[i] = 1;
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](std::size_t l, std::size_t r) { return field.util_m3[l] > field.util_m3[r]; });
+  pruning.candidate_cells = candidates.size();
+  for (std::size_t i = 0; i < field.util_m3.size(); ++i)
+    if (field.util_m3[i] > 0.0) result.utility_field.push_back({s.grid.center_of(s.grid.key(i)), field.util_m3[i], kept[i] != 0});
+  result.timing.pruning_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  std::mt19937_64 rng(s.config.seed);
+  const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
+  std::vector<Pose> poses;
+  std::vector<Eigen::Vector3d> used;  // viewpoints that gave a valid pose
+  const double separation_sq = s.config.min_separation_m * s.config.min_separation_m;
+  for (const std::size_t cell : candidates) {
+    if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+    const Eigen::Vector3d p = s.grid.center_of(s.grid.key(cell));
+    if (std::any_of(used.begin(), used.end(), [&](const Eigen::Vector3d& u) { return (u - p).squaredNorm() < separation_sq; })) {
+      ++pruning.too_near_a_tried_cell;
+      continue;
+    }
+    ++pruning.cells_tried;
+    // Targets: the centres of the voids whose utility reached the cell, then their extremes.
+    std::vector<Eigen::Vector3d> targets, extremes;
+    for (const std::int32_t fv : field.contributors[cell]) {
+      if (fv < 0) break;
+      const auto corners = s.a.void_clusters[std::size_t(s.a.frontier_voids[std::size_t(fv)].void_id)].corners();
+      targets.push_back(corners[0]);
+      extremes.insert(extremes.end(), corners.begin() + 1, corners.end());
+    }
+    targets.insert(targets.end(), extremes.begin(), extremes.end());
+    const std::size_t before = poses.size();
+    // With an arm, each sampled axis turns to the nearest direction the arm reaches there, if
+    // that keeps the aim inside the image (a 5-DOF arm reaches only an arc of directions,
+    // so most raw samples would be refused).
+    const std::vector<Eigen::Vector3d> reachable =
+        s.reach ? s.reach->capmap->reachable_directions(s.reach->T_world_base, p) : std::vector<Eigen::Vector3d>{};
+    for (Eigen::Matrix3d R :
+         viewpoints::sample_orientations(p, targets, s.config.orientations_per_cell, jitter_rad, rng)) {
+      if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+      if (s.reach && !reachable.empty()) {
+        const Eigen::Vector3d axis = R.col(2);
+        const auto nearest = std::max_element(reachable.begin(), reachable.end(), [&](const auto& l, const auto& r) {
+          return l.dot(axis) < r.dot(axis);
+        });
+        if (nearest->dot(axis) >= std::cos(s.half_fov_rad)) R = Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
+      }
+      Pose pose;
+      pose.T_world_sensor.linear() = R;
+      pose.T_world_sensor.translation() = p;
+      pose.cell = cell;
+      if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
+        poses.push_back(std::move(pose));
+    }
+    if (poses.size() > before) used.push_back(p);
+  }
+  pruning.valid_poses = poses.size();
+  result.timing.sampling_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  result.views = s.rank(poses, U, &field.util_m3, &field);
+  result.timing.scoring_s = seconds_since(t0);
+
+  if (!result.views.empty()) return result;
+  if (field.cells == 0)
+    result.reason = "no utility vector reaches a free cell: every frontier-void's frontier is blocked";
+  else if (candidates.empty())
+    result.reason = "pruning removed all " + std::to_string(pruning.utility_cells) +
+                    " cells with utility (not free, outside the view bounds, too close to an obstacle or "
+                    "out of the arm's reach; see pruning)";
+  else if (poses.empty())
+    result.reason = "no sampled orientation at the " + std::to_string(pruning.cells_tried) +
+                    " candidate cells is reachable by the arm";
+  else
+    result.reason = "none of the " + std::to_string(poses.size()) + " valid poses sees a void cell";
+  return result;
+}
+
+}  // namespace detail
+
+Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
+              const Config& config) {
+  const auto problems = config.validate();
+  if (!problems.empty()) throw UsageError("nbv: " + problems.front());
+  if (reach && !reach->capmap) throw UsageError("nbv: a reach without a capability map");
+  if (config.strategy == Strategy::Exhaustive && !reach)
+    throw UsageError("strategy exhaustive enumerates the capability map's voxels and directions: give one");
+  const auto start = detail::Clock::now();
+  Result result;
+  // What the analysis already says: no view can help.
+  const bool any_open_void = std::any_of(analysis.frontier_voids.begin(), analysis.frontier_voids.end(),
+                                         [](const auto& fv) { return !fv.enclosed(); });
+  if (config.strategy != Strategy::Frontier && !any_open_void) {
+    result.reason = analysis.void_cells.empty()
+                        ? "no void cell in the search space: nothing is left to look into"
+                        : "every void is enclosed: no frontier touches one, so no view can see into it";
+    return result;
+  }
+  if (config.strategy == Strategy::Frontier && analysis.frontier_clusters.empty()) {
+    result.reason = "no frontier cell in the search space";
+    return result;
+  }
+  auto t0 = detail::Clock::now();
+  detail::Search search(map, analysis, reach, config);
+  result.timing.grid_s = detail::seconds_since(t0);
+  switch (config.strategy) {
+    case Strategy::FrontierVoid: result = detail::select_frontier_void(search, std::move(result)); break;
+    case Strategy::Exhaustive: result = detail::select_exhaustive(search, std::move(result)); break;
+    case Strategy::Frontier: result = detail::select_frontier(search, std::move(result)); break;
+  }
+  result.timing.total_s = detail::seconds_since(start);
+  return result;
+}
+
+}  // namespace fvx::nbv

@@ -1,0 +1,197 @@
+// The two reference strategies of `fvx nbv --strategy`: exhaustive (every reachable pose of
+// the capability map, scored like the paper's) and plain frontier-based (no voids).
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "fvx/viewpoints/orientations.hpp"
+#include "search.hpp"
+
+namespace fvx::nbv::detail {
+
+namespace {
+
+/// A sphere around a void cluster's cells: a pose whose frustum misses every one sees no
+/// void cell (U = 0) and need not be traced.
+struct Sphere {
+  Eigen::Vector3d center;
+  double radius;
+};
+
+std::vector<Sphere> void_spheres(const Search& s) {
+  std::vector<Sphere> spheres;
+  const double half_diagonal = std::sqrt(3.0) * 0.5 * s.grid.resolution_m();
+  for (const auto& v : s.a.void_clusters) {
+    double r = 0.0;
+    for (const map::VoxelKey& k : v.cells) r = std::max(r, (s.map.center_of(k) - v.mean_m).norm());
+    spheres.push_back({v.mean_m, r + half_diagonal});
+  }
+  return spheres;
+}
+
+/// Does a sphere meet the cone of half-angle `half_angle` along `axis` (unit) from `apex`,
+/// within `range`? Conservative: true whenever the frustum inside the cone might.
+bool meets_cone(const Sphere& sphere, const Eigen::Vector3d& apex, const Eigen::Vector3d& axis, double half_angle,
+                double range) {
+  const Eigen::Vector3d v = sphere.center - apex;
+  const double distance = v.norm();
+  if (distance <= sphere.radius) return true;
+  if (distance - sphere.radius > range) return false;
+  const double angle = std::acos(std::clamp(v.dot(axis) / distance, -1.0, 1.0));
+  return angle - std::asin(sphere.radius / distance) <= half_angle;
+}
+
+}  // namespace
+
+Result select_exhaustive(Search& s, Result result) {
+  auto t0 = Clock::now();
+  const capmap::CapabilityMap& cm = *s.reach->capmap;
+  const Eigen::Isometry3d& T_world_base = s.reach->T_world_base;
+  Pruning& pruning = result.pruning;
+  const auto spheres = void_spheres(s);
+  double half_angle = 0.0, longest = 1.0;
+  for (const Eigen::Vector3d& ray : s.rays_sensor) {
+    half_angle = std::max(half_angle, std::acos(1.0 / ray.norm()));
+    longest = std::max(longest, ray.norm());
+  }
+  const double range = s.config.sensor.depth_max_m * longest;
+  std::vector<Pose> poses;
+  for (const auto& [voxel, bits] : cm.voxels()) {
+    ++pruning.utility_cells;
+    const Eigen::Vector3d p = T_world_base * cm.center_of(voxel);
+    const auto key = s.map.key_of(p);
+    if (!key) {
+      ++pruning.not_free;
+      continue;
+    }
+    if (!s.keep_position(*key, p, pruning)) continue;
+    ++pruning.candidate_cells;
+    ++pruning.cells_tried;
+    const std::size_t cell = s.grid.index(*key);
+    for (int d = 0; d < cm.directions().size(); ++d) {
+      if (!(bits[std::size_t(d) / 64] >> (d % 64) & 1u)) continue;
+      const Eigen::Vector3d d_world = T_world_base.linear() * cm.directions()[d];
+      for (int k = 0; k < s.config.exhaustive_rolls; ++k) {
+        ++pruning.orientations_sampled;
+        ++pruning.valid_poses;
+        const bool visible = std::any_of(spheres.begin(), spheres.end(), [&](const Sphere& sphere) {
+          return meets_cone(sphere, p, d_world, half_angle, range);
+        });
+        if (!visible) {
+          ++pruning.culled;
+          continue;
+        }
+        Pose pose;
+        pose.T_world_sensor.linear() = viewpoints::look_along(d_world, M_PI * k / s.config.exhaustive_rolls);
+        pose.T_world_sensor.translation() = p;
+        pose.cell = cell;
+        poses.push_back(std::move(pose));
+      }
+    }
+  }
+  result.timing.pruning_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  pruning.seeing_nothing += pruning.culled;
+  result.timing.scoring_s = seconds_since(t0);
+  // IK only for the poses that make the ranking (it would cost seconds for all of them).
+  t0 = Clock::now();
+  Pruning ik_pruning;
+  result.views = s.rank(poses, U, nullptr, nullptr, [&](Pose& pose, std::size_t i) {
+    return !s.reach->arm || s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (i + 1), ik_pruning);
+  });
+  pruning.ik_failed = ik_pruning.ik_failed;
+  result.timing.sampling_s = seconds_since(t0);
+  if (result.views.empty())
+    result.reason = pruning.candidate_cells == 0
+                        ? "no voxel of the capability map is a free cell of the map clear of obstacles"
+                        : "no reachable pose sees a void cell";
+  return result;
+}
+
+Result select_frontier(Search& s, Result result) {
+  auto t0 = Clock::now();
+  // The largest frontier cluster (ties: the lower id).
+  const frontiers::Cluster* target = nullptr;
+  for (const auto& c : s.a.frontier_clusters)
+    if (!target || c.cells.size() > target->cells.size()) target = &c;
+  // A frontier-based viewer stands in the free space in front of the frontier: from each
+  // frontier cell a ray goes away from its unknown face-neighbours; cells it passes gain 1.
+  std::vector<double> rays_through(s.grid.cell_count(), 0.0);
+  std::vector<std::uint8_t> mask(s.grid.cell_count(), 0);
+  std::size_t vectors = 0;
+  for (const map::VoxelKey& f : target->cells) {
+    if (!s.grid.contains(f)) continue;
+    mask[s.grid.index(f)] = 1;
+    Eigen::Vector3d toward_unknown = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a)
+      for (int sign : {-1, 1}) {
+        map::VoxelKey n = f;
+        (a == 0 ? n.x : a == 1 ? n.y : n.z) = std::uint16_t((a == 0 ? f.x : a == 1 ? f.y : f.z) + sign);
+        if (s.map.state(n) == map::VoxelState::Unknown) toward_unknown[a] += sign;
+      }
+    if (toward_unknown.norm() < 1e-9) continue;
+    ++vectors;
+    s.grid.walk(s.grid.center_of(f), -toward_unknown, s.config.sensor.depth_max_m,
+                [&](std::size_t i, map::VoxelState state) {
+                  if (state != map::VoxelState::Free) return false;
+                  rays_through[i] += 1.0;
+                  return true;
+                });
+  }
+  result.utility_vectors = vectors;
+  result.timing.accumulation_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  Pruning& pruning = result.pruning;
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < rays_through.size(); ++i) {
+    if (!(rays_through[i] > 0.0)) continue;
+    ++pruning.utility_cells;
+    const map::VoxelKey k = s.grid.key(i);
+    const bool keep = s.keep_position(k, s.grid.center_of(k), pruning);
+    if (keep) candidates.push_back(i);
+    result.utility_field.push_back({s.grid.center_of(k), rays_through[i], keep});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](std::size_t l, std::size_t r) { return rays_through[l] > rays_through[r]; });
+  pruning.candidate_cells = candidates.size();
+  result.timing.pruning_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  std::mt19937_64 rng(s.config.seed);
+  const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
+  std::vector<Pose> poses;
+  for (const std::size_t cell : candidates) {
+    if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+    ++pruning.cells_tried;
+    const Eigen::Vector3d p = s.grid.center_of(s.grid.key(cell));
+    for (const Eigen::Matrix3d& R : viewpoints::sample_orientations(p, {target->centroid_m},
+                                                                    s.config.orientations_per_cell, jitter_rad, rng)) {
+      if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+      Pose pose;
+      pose.T_world_sensor.linear() = R;
+      pose.T_world_sensor.translation() = p;
+      pose.cell = cell;
+      if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
+        poses.push_back(std::move(pose));
+    }
+  }
+  pruning.valid_poses = poses.size();
+  result.timing.sampling_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  const viewpoints::FovScorer scorer(s.grid, std::move(mask), s.rays_sensor, s.config.sensor.depth_max_m,
+                                     s.config.sensor.depth_min_m);
+  const std::vector<std::size_t> seen = s.score(scorer, poses, result);
+  result.views = s.rank(poses, seen, &rays_through, nullptr);
+  for (View& v : result.views) v.frontier_cells_seen = seen[v.pose_index];
+  result.timing.scoring_s = seconds_since(t0);
+  if (result.views.empty())
+    result.reason = candidates.empty() ? "pruning removed every cell in front of the largest frontier cluster"
+                                       : "no valid pose sees the largest frontier cluster";
+  return result;
+}
+
+}  // namespace fvx::nbv::detail

@@ -1,0 +1,169 @@
+#include "search.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <random>
+#include <thread>
+
+#include "fvx/core/error.hpp"
+
+namespace fvx::nbv::detail {
+
+namespace {
+
+Eigen::AlignedBox3d grid_box(const map::OccupancyMap& map, const frontier_voids::Analysis& a,
+                             const Eigen::AlignedBox3d& view_bounds) {
+  // Rays run between the view bounds and the search space: the box around both, within the
+  // known cells (beyond them every cell is unknown and no viewpoint can be).
+  const map::Stats stats = map.stats();
+  Eigen::AlignedBox3d box = a.bounds_m;
+  box.extend(view_bounds);
+  if (stats.empty) return Eigen::AlignedBox3d();
+  return box.intersection(Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m));
+}
+
+Eigen::AlignedBox3d default_view_bounds(const map::OccupancyMap& map, const Config& config) {
+  if (config.view_bounds_m) return *config.view_bounds_m;
+  const map::Stats stats = map.stats();
+  return stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
+}
+
+}  // namespace
+
+Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& analysis,
+               const std::optional<Reach>& reach_in, const Config& config_in)
+    : map(map_in),
+      a(analysis),
+      reach(reach_in),
+      config(config_in),
+      view_bounds_m(default_view_bounds(map_in, config_in)),
+      grid(map_in, grid_box(map_in, analysis, view_bounds_m)) {
+  void_label.assign(grid.cell_count(), -1);
+  for (const auto& v : a.void_clusters)
+    for (const map::VoxelKey& k : v.cells)
+      if (grid.contains(k)) void_label[grid.index(k)] = v.id;
+  occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied);
+  rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
+  const io::Intrinsics& K = config.sensor.intrinsics;
+  half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
+  void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
+                                                        config.sensor.depth_min_m);
+}
+
+std::vector<std::uint8_t> Search::void_mask() const {
+  std::vector<std::uint8_t> mask(void_label.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = void_label[i] >= 0;
+  return mask;
+}
+
+bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const {
+  if (!grid.contains(cell) || grid.state(cell) != map::VoxelState::Free) {
+    ++pruning.not_free;
+    return false;
+  }
+  if (!view_bounds_m.contains(p_world)) {
+    ++pruning.outside_view_bounds;
+    return false;
+  }
+  // Occupied cell centres within clearance_m (the grid covers the known cells in reach).
+  const double R = grid.resolution_m();
+  if (double(occupied_distance_sq[grid.index(cell)]) * R * R <= config.clearance_m * config.clearance_m) {
+    ++pruning.too_close_to_obstacle;
+    return false;
+  }
+  if (reach) {
+    const Eigen::Vector3d p_base = reach->T_world_base.inverse() * p_world;
+    if (reach->capmap->reachability_index(p_base) <= 0.0) {
+      ++pruning.unreachable_position;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const {
+  ++pruning.orientations_sampled;
+  if (!reach) return true;
+  const Eigen::Vector3d p = pose.T_world_sensor.translation(), d = pose.T_world_sensor.linear().col(2);
+  if (!reach->capmap->reachable(reach->T_world_base, p, d)) {
+    ++pruning.unreachable_orientation;
+    return false;
+  }
+  if (reach->arm) {
+    std::mt19937_64 rng(pose_seed);
+    const Eigen::Isometry3d T_base_world = reach->T_world_base.inverse();
+    const capmap::IkResult ik =
+        capmap::solve_viewing_ik(*reach->arm, T_base_world * p, T_base_world.linear() * d, reach->ik, rng);
+    if (!ik.reached) {
+      ++pruning.ik_failed;
+      return false;
+    }
+    pose.joints_rad = ik.q;
+  }
+  return true;
+}
+
+std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
+                                       Result& result) const {
+  std::vector<viewpoints::FovScorer::Score> scores(poses.size());
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
+                                      unsigned(std::max<std::size_t>(1, poses.size()))));
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    viewpoints::FovScorer::Workspace ws;
+    for (std::size_t i = next++; i < poses.size(); i = next++) scores[i] = scorer.score(poses[i].T_world_sensor, ws);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  std::vector<std::size_t> seen(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    seen[i] = scores[i].targets_seen;
+    result.pruning.seeing_nothing += seen[i] == 0;
+    result.timing.cells_visited += scores[i].cells_visited;
+  }
+  result.timing.rays += poses.size() * rays_sensor.size();
+  result.poses_scored += poses.size();
+  return seen;
+}
+
+std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
+                               const std::vector<double>* util_m3, const utility::Field* field,
+                               const std::function<bool(Pose&, std::size_t)>& accept) const {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (score[i] > 0) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return score[l] > score[r]; });
+  std::vector<View> views;
+  viewpoints::FovScorer::Workspace ws;
+  std::vector<std::size_t> seen;
+  for (const std::size_t i : order) {
+    if (views.size() >= std::size_t(config.top)) break;
+    Pose& pose = poses[i];
+    if (accept && !accept(pose, i)) continue;
+    View v;
+    v.T_world_sensor = pose.T_world_sensor;
+    v.pose_index = i;
+    v.joints_rad = pose.joints_rad;
+    v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
+    std::map<int, std::size_t> per_void;
+    for (const std::size_t c : seen) ++per_void[void_label[c]];
+    v.voids_seen.assign(per_void.begin(), per_void.end());
+    std::stable_sort(v.voids_seen.begin(), v.voids_seen.end(),
+                     [](const auto& l, const auto& r) { return l.second > r.second; });
+    if (pose.cell != kNoCell) {
+      if (util_m3) v.accumulated_utility_m3 = (*util_m3)[pose.cell];
+      if (field)
+        for (const std::int32_t fv : field->contributors[pose.cell])
+          if (fv >= 0) v.utility_from.push_back(fv);
+    }
+    views.push_back(std::move(v));
+  }
+  return views;
+}
+
+}  // namespace fvx::nbv::detail

@@ -1,0 +1,70 @@
+#pragma once
+// What the three strategies share: the grid, the position and orientation checks, scoring in
+// parallel and the ranking. Private to src/nbv/.
+#include <chrono>
+#include <functional>
+#include <limits>
+#include <memory>
+
+#include "fvx/map/dense_grid.hpp"
+#include "fvx/nbv/nbv.hpp"
+#include "fvx/utility/utility.hpp"
+#include "fvx/viewpoints/fov.hpp"
+
+namespace fvx::nbv::detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
+
+/// A pose to score, with where it came from.
+struct Pose {
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  std::size_t cell = kNoCell;        ///< grid index of its viewpoint cell
+  Eigen::VectorXd joints_rad;
+};
+
+struct Search {
+  Search(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
+         const Config& config);
+
+  /// Position checks in the paper's order, each counted in `pruning` when it fails.
+  bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
+  /// Orientation checks: the capability map's bit, then IK when an arm is given (its
+  /// restarts seeded by `pose_seed`); fills pose.joints_rad.
+  bool keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const;
+
+  /// The targets each pose sees (U with the void scorer), on config.threads threads (the
+  /// same on any count); counts the poses, rays, cells visited and poses seeing nothing.
+  std::vector<std::size_t> score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
+                                 Result& result) const;
+  /// Ranks by `score` (descending; ties: generation order), drops zeros and poses `accept`
+  /// refuses (when given; it may fill the joints), keeps config.top and describes each view:
+  /// void cells seen per cluster, contributors, joints.
+  std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
+                         const std::vector<double>* util_m3, const utility::Field* field,
+                         const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
+
+  std::vector<std::uint8_t> void_mask() const;
+
+  const map::OccupancyMap& map;
+  const frontier_voids::Analysis& a;
+  const std::optional<Reach>& reach;
+  const Config& config;
+  Eigen::AlignedBox3d view_bounds_m;
+  map::DenseGrid grid;
+  std::vector<std::int32_t> void_label;          ///< per grid cell: void cluster id, −1 elsewhere
+  std::vector<float> occupied_distance_sq;       ///< per grid cell: to the nearest occupied cell, cells²
+  std::vector<Eigen::Vector3d> rays_sensor;
+  double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
+  std::unique_ptr<viewpoints::FovScorer> void_scorer;
+};
+
+Result select_frontier_void(Search& s, Result result);
+Result select_exhaustive(Search& s, Result result);
+Result select_frontier(Search& s, Result result);
+
+}  // namespace fvx::nbv::detail

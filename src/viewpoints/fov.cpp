@@ -1,0 +1,91 @@
+#include "fvx/viewpoints/fov.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fvx/core/error.hpp"
+
+namespace fvx::viewpoints {
+
+std::vector<Eigen::Vector3d> ray_fan(const io::Intrinsics& K, int cols, int rows) {
+  FVX_ASSERT(cols > 0 && rows > 0 && K.validate().empty(), "ray_fan: bad grid or intrinsics");
+  std::vector<Eigen::Vector3d> rays;
+  rays.reserve(std::size_t(cols) * std::size_t(rows));
+  for (int r = 0; r < rows; ++r) {
+    // Centres of `rows` equal bands of the image's pixel extent [−0.5, height − 0.5].
+    const double v = (r + 0.5) * K.height / rows - 0.5;
+    for (int c = 0; c < cols; ++c) {
+      const double u = (c + 0.5) * K.width / cols - 0.5;
+      rays.emplace_back((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
+    }
+  }
+  return rays;
+}
+
+Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_rad) {
+  const Eigen::Vector3d z = direction_world.normalized();
+  // Image x (right) = z × up, so that image −y (up) = the part of world up across z.
+  Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ());
+  if (x.norm() < 1e-6) x = z.cross(Eigen::Vector3d::UnitX());
+  x.normalize();
+  Eigen::Matrix3d R;
+  R << x, z.cross(x), z;
+  return R * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ());
+}
+
+FovScorer::FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target,
+                     std::vector<Eigen::Vector3d> rays_sensor, double depth_max_m, double depth_min_m)
+    : grid_(grid),
+      target_(std::move(target)),
+      rays_sensor_(std::move(rays_sensor)),
+      depth_max_m_(depth_max_m),
+      depth_min_m_(depth_min_m) {
+  FVX_ASSERT(target_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
+  FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
+}
+
+FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Workspace& ws,
+                                  std::vector<std::size_t>* seen) const {
+  if (ws.stamp.size() != grid_.cell_count()) {
+    ws.stamp.assign(grid_.cell_count(), 0);
+    ws.current = 0;
+  }
+  if (++ws.current == 0) {  // wrapped after 2^32 poses: start the stamps again
+    std::fill(ws.stamp.begin(), ws.stamp.end(), 0);
+    ws.current = 1;
+  }
+  const std::uint32_t now = ws.current;
+  Score s;
+  if (seen) seen->clear();
+  const Eigen::Vector3d origin = T_world_sensor.translation();
+  const Eigen::Matrix3d R = T_world_sensor.linear();
+  const Eigen::Vector3d axis = R.col(2);
+  for (const Eigen::Vector3d& ray : rays_sensor_) {
+    // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
+    ws.ray_targets.clear();
+    std::size_t hit = std::size_t(-1);
+    grid_.walk(origin, R * ray, depth_max_m_ * ray.norm(), [&](std::size_t i, map::VoxelState state) {
+      ++s.cells_visited;
+      if (state == map::VoxelState::Occupied) {
+        hit = i;
+        return false;
+      }
+      if (target_[i] && ws.stamp[i] != now) ws.ray_targets.push_back(i);
+      return true;
+    });
+    // A surface nearer than the minimum depth (its cell centre's depth) gives no measurement.
+    if (hit != std::size_t(-1) && depth_min_m_ > 0.0 &&
+        (grid_.center_of(grid_.key(hit)) - origin).dot(axis) < depth_min_m_)
+      continue;
+    for (const std::size_t i : ws.ray_targets) {
+      if (ws.stamp[i] == now) continue;  // a ray may cross a cell twice only by rounding; count once
+      ws.stamp[i] = now;
+      ++s.targets_seen;
+      if (seen) seen->push_back(i);
+    }
+  }
+  if (seen) std::sort(seen->begin(), seen->end());
+  return s;
+}
+
+}  // namespace fvx::viewpoints

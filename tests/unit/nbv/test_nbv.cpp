@@ -1,0 +1,202 @@
+// The next best view on the closed box with one opening, scanned from six sides: the best
+// view looks through the opening and reaches most of the exhaustive optimum; reachability,
+// clearance, determinism and the empty answers.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "fvx/core/error.hpp"
+#include "fvx/nbv/nbv.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/viewpoints/fov.hpp"
+#include "scan_scene.hpp"
+
+namespace fvx::nbv {
+namespace {
+
+std::string source(const std::string& relative) {
+  const char* root = std::getenv("FVX_SOURCE_DIR");
+  return std::string(root ? root : ".") + "/" + relative;
+}
+
+// The closed box (outer 0.52…1.02 × −0.27…0.23 × 0…0.40 m, walls 2 cm, a 16 cm opening in
+// the middle of the lid) scanned from six sides at 1.3 m, 2 cm cells: every wall is known,
+// the interior is unknown except what the first scans saw through the opening.
+struct ClosedBox {
+  map::OccupancyMap map{0.02};
+  frontier_voids::Analysis analysis;
+  ClosedBox() {
+    const Eigen::Vector3d centre(0.77, -0.02, 0.2);
+    std::vector<Eigen::Isometry3d> views;
+    for (int i = 0; i < 6; ++i) {
+      const double a = 2 * M_PI * i / 6;
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.translation() = centre + Eigen::Vector3d(1.3 * std::cos(a), 1.3 * std::sin(a), 0.7);
+      T.linear() = viewpoints::look_along(centre - T.translation(), 0.0);
+      views.push_back(T);
+    }
+    test::integrate_views(map, sim::builtin_scene("closed-box"), views);
+    frontiers::FrontierSet frontier_set;
+    frontier_set.rebuild(map);
+    voids::VoidSet void_set;
+    void_set.rebuild(map);
+    analysis = frontier_voids::analyse(map, frontier_set, &void_set, std::nullopt, voids::ClusterConfig{});
+  }
+};
+
+const ClosedBox& closed_box() {
+  static const ClosedBox box;
+  return box;
+}
+
+struct Arm {
+  capmap::CapabilityMap capmap = capmap::CapabilityMap::load(source("data/arms/fvx-arm.fcm"));
+  capmap::Arm arm = capmap::Arm::from_urdf(source("data/arms/fvx-arm.urdf"), capmap::arm_config_of(capmap.header()));
+  Reach reach(const Eigen::Vector3d& base) const {
+    Reach r{&capmap, Eigen::Isometry3d::Identity(), &arm, {}};
+    r.T_world_base.translation() = base;
+    r.ik.position_tolerance_m = capmap.header().position_tolerance_m;
+    r.ik.angle_tolerance_rad = capmap.header().angle_tolerance_rad;
+    return r;
+  }
+};
+
+Config coarse() {
+  Config c;
+  c.ray_cols = 40;  // a quarter of the default rays: the exhaustive reference stays a few seconds
+  c.ray_rows = 30;
+  c.exhaustive_rolls = 1;
+  return c;
+}
+
+TEST(Nbv, ClosedBoxTheBestViewLooksThroughTheOpening) {
+  const ClosedBox& box = closed_box();
+  ASSERT_GT(box.analysis.void_cells.size(), 5000u);
+  const Arm arm;
+  const Reach reach = arm.reach({0.2, 0.0, 0.0});
+  const Result fv = select(box.map, box.analysis, reach, coarse());
+  ASSERT_FALSE(fv.views.empty()) << fv.reason;
+  EXPECT_EQ(fv.poses_scored, 50u);
+  // The optical axis crosses the lid (z 0.38…0.40) inside the opening (x 0.69…0.85,
+  // y −0.10…0.06), give or take one cell.
+  const Eigen::Isometry3d& T = fv.views.front().T_world_sensor;
+  const Eigen::Vector3d p = T.translation(), d = T.linear().col(2);
+  ASSERT_GT(p.z(), 0.40);
+  ASSERT_LT(d.z(), 0.0);
+  const Eigen::Vector3d at_lid = p + d * ((0.39 - p.z()) / d.z());
+  const double R = box.map.resolution_m();
+  EXPECT_GT(at_lid.x(), 0.69 - R);
+  EXPECT_LT(at_lid.x(), 0.85 + R);
+  EXPECT_GT(at_lid.y(), -0.10 - R);
+  EXPECT_LT(at_lid.y(), 0.06 + R);
+
+  Config exhaustive = coarse();
+  exhaustive.strategy = Strategy::Exhaustive;
+  const Result ex = select(box.map, box.analysis, reach, exhaustive);
+  ASSERT_FALSE(ex.views.empty()) << ex.reason;
+  EXPECT_GT(ex.poses_scored, 1000u);
+  EXPECT_GE(double(fv.views.front().void_cells_seen), 0.8 * double(ex.views.front().void_cells_seen))
+      << "frontier-void " << fv.views.front().void_cells_seen << " vs exhaustive " << ex.views.front().void_cells_seen;
+}
+
+TEST(Nbv, EveryViewIsReachableFreeAndClearWithItsJoints) {
+  const ClosedBox& box = closed_box();
+  const Arm arm;
+  const Reach reach = arm.reach({0.2, 0.0, 0.0});
+  Config config = coarse();
+  config.top = 50;
+  const Result r = select(box.map, box.analysis, reach, config);
+  ASSERT_GE(r.views.size(), 5u);  // views with U > 0 among the 50 valid poses
+  const auto occupied = box.map.occupied_centers();
+  for (const View& v : r.views) {
+    const Eigen::Vector3d p = v.T_world_sensor.translation(), d = v.T_world_sensor.linear().col(2);
+    EXPECT_TRUE(arm.capmap.reachable(reach.T_world_base, p, d));
+    ASSERT_EQ(v.joints_rad.size(), arm.arm.dof());
+    const Eigen::Isometry3d T_base_sensor = arm.arm.fk(v.joints_rad);
+    EXPECT_LT((reach.T_world_base * T_base_sensor.translation() - p).norm(), reach.ik.position_tolerance_m + 1e-9);
+    EXPECT_LT(std::acos(std::min(1.0, arm.arm.viewing_direction(v.joints_rad).dot(d))), reach.ik.angle_tolerance_rad + 1e-9);
+    EXPECT_EQ(box.map.state(*box.map.key_of(p)), map::VoxelState::Free);
+    double nearest = INFINITY;
+    for (const auto& o : occupied) nearest = std::min(nearest, (o.cast<double>() - p).norm());
+    EXPECT_GT(nearest, config.clearance_m - 1e-6);
+    EXPECT_GT(v.void_cells_seen, 0u);
+    EXPECT_FALSE(v.utility_from.empty());
+    EXPECT_GT(v.accumulated_utility_m3, 0.0);
+  }
+  for (std::size_t i = 1; i < r.views.size(); ++i) EXPECT_GE(r.views[i - 1].void_cells_seen, r.views[i].void_cells_seen);
+}
+
+TEST(Nbv, AFarBaseGivesNoViewAndSaysWhy) {
+  const ClosedBox& box = closed_box();
+  const Arm arm;
+  const Result r = select(box.map, box.analysis, arm.reach({50.0, 0.0, 0.0}), coarse());
+  EXPECT_TRUE(r.views.empty());
+  EXPECT_NE(r.reason.find("pruning removed"), std::string::npos) << r.reason;
+  EXPECT_GT(r.pruning.unreachable_position, 0u);
+  EXPECT_EQ(r.pruning.candidate_cells, 0u);
+  EXPECT_EQ(r.pruning.utility_cells, r.pruning.not_free + r.pruning.outside_view_bounds +
+                                         r.pruning.too_close_to_obstacle + r.pruning.unreachable_position);
+}
+
+TEST(Nbv, TheSameSeedGivesTheSameViewsOnAnyThreadCount) {
+  const ClosedBox& box = closed_box();
+  Config one = coarse(), two = coarse();
+  one.threads = 1;
+  two.threads = 2;
+  const Result a = select(box.map, box.analysis, std::nullopt, one), b = select(box.map, box.analysis, std::nullopt, two);
+  ASSERT_FALSE(a.views.empty());
+  ASSERT_EQ(a.views.size(), b.views.size());
+  for (std::size_t i = 0; i < a.views.size(); ++i) {
+    EXPECT_EQ(a.views[i].T_world_sensor.matrix(), b.views[i].T_world_sensor.matrix());
+    EXPECT_EQ(a.views[i].void_cells_seen, b.views[i].void_cells_seen);
+  }
+  Config other = coarse();
+  other.seed = 2;
+  const Result c = select(box.map, box.analysis, std::nullopt, other);
+  ASSERT_FALSE(c.views.empty());
+  EXPECT_NE(a.views.front().T_world_sensor.matrix(), c.views.front().T_world_sensor.matrix());
+}
+
+TEST(Nbv, WithoutOpenVoidsTheAnswerIsEmptyWithAReason) {
+  const ClosedBox& box = closed_box();
+  frontier_voids::Analysis none = box.analysis;
+  none.void_cells.clear();
+  none.void_clusters.clear();
+  none.frontier_voids.clear();
+  Result r = select(box.map, none, std::nullopt, coarse());
+  EXPECT_TRUE(r.views.empty());
+  EXPECT_NE(r.reason.find("no void cell"), std::string::npos) << r.reason;
+  frontier_voids::Analysis enclosed = box.analysis;
+  for (auto& fv : enclosed.frontier_voids) fv.frontier_ids.clear();
+  r = select(box.map, enclosed, std::nullopt, coarse());
+  EXPECT_TRUE(r.views.empty());
+  EXPECT_NE(r.reason.find("enclosed"), std::string::npos) << r.reason;
+}
+
+TEST(Nbv, TheFrontierStrategyViewsTheLargestFrontierCluster) {
+  const ClosedBox& box = closed_box();
+  Config config = coarse();
+  config.strategy = Strategy::Frontier;
+  const Result r = select(box.map, box.analysis, std::nullopt, config);
+  ASSERT_FALSE(r.views.empty()) << r.reason;
+  EXPECT_GT(r.views.front().frontier_cells_seen, 0u);
+  for (std::size_t i = 1; i < r.views.size(); ++i)
+    EXPECT_GE(r.views[i - 1].frontier_cells_seen, r.views[i].frontier_cells_seen);
+}
+
+TEST(Nbv, ConfigValidationListsTheProblems) {
+  Config c;
+  c.top = 0;
+  c.valid_poses = 0;
+  c.sensor.intrinsics.fx = 0.0;
+  const auto problems = c.validate();
+  EXPECT_EQ(problems.size(), 3u);
+  EXPECT_THROW(select(closed_box().map, closed_box().analysis, std::nullopt, c), UsageError);
+  Config ex;
+  ex.strategy = Strategy::Exhaustive;
+  EXPECT_THROW(select(closed_box().map, closed_box().analysis, std::nullopt, ex), UsageError);
+}
+
+}  // namespace
+}  // namespace fvx::nbv

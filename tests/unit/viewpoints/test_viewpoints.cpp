@@ -1,0 +1,166 @@
+// The field of view against an exact oracle (every cell a ray's segment enters, by slab
+// tests over the whole grid), the look-at rotation, and orientation sampling.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "fvx/viewpoints/fov.hpp"
+#include "fvx/viewpoints/orientations.hpp"
+
+namespace fvx::viewpoints {
+namespace {
+
+TEST(RayFan, SpansTheImageThroughDecimatedPixelCentres) {
+  const io::Intrinsics K;  // Kinect v1
+  const auto rays = ray_fan(K, 80, 60);
+  ASSERT_EQ(rays.size(), 4800u);
+  for (const auto& r : rays) EXPECT_EQ(r.z(), 1.0);
+  // Band centres of 8×8 pixels: the first at pixel 3.5, the last at 635.5 (u), 475.5 (v).
+  EXPECT_NEAR(rays.front().x(), (3.5 - 319.5) / 525.0, 1e-12);
+  EXPECT_NEAR(rays.front().y(), (3.5 - 239.5) / 525.0, 1e-12);
+  EXPECT_NEAR(rays.back().x(), (635.5 - 319.5) / 525.0, 1e-12);
+  EXPECT_NEAR(rays.back().y(), (475.5 - 239.5) / 525.0, 1e-12);
+  const auto one = ray_fan(K, 1, 1);  // the image centre
+  EXPECT_NEAR(one[0].x(), 0.0, 1e-12);
+  EXPECT_NEAR(one[0].y(), 0.0, 1e-12);
+}
+
+TEST(LookAlong, PointsTheOpticalAxisAndKeepsTheImageUpright) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const double roll = 3.0 * g(rng);
+    const Eigen::Matrix3d R = look_along(d * 2.5, roll);
+    ASSERT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+    ASSERT_NEAR(R.determinant(), 1.0, 1e-12);
+    ASSERT_NEAR((R.col(2) - d).norm(), 0.0, 1e-12);
+    // Roll 0: image up (−y) points up as far as the axis allows, image x is level.
+    const Eigen::Matrix3d R0 = look_along(d, 0.0);
+    EXPECT_NEAR(R0.col(0).z(), 0.0, 1e-12);
+    EXPECT_GE(-R0.col(1).z(), 0.0);
+    // Roll turns about the axis by the given angle.
+    EXPECT_NEAR(std::acos(std::clamp(R0.col(0).dot(R.col(0)), -1.0, 1.0)),
+                std::abs(std::remainder(roll, 2 * M_PI)), 1e-9);
+  }
+  const Eigen::Matrix3d down = look_along(-Eigen::Vector3d::UnitZ(), 0.0);  // degenerate: still a rotation
+  EXPECT_NEAR((down.col(2) + Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(down.determinant(), 1.0, 1e-12);
+}
+
+TEST(SampleOrientations, AimAtTheTargetsWithinTheJitter) {
+  std::mt19937_64 rng(9);
+  const Eigen::Vector3d p(0.1, 0.2, 0.3);
+  const std::vector<Eigen::Vector3d> targets = {{1, 0, 0}, {0, 2, 0}, {0.1, 0.2, 0.3}, {0, 0, -1}};
+  const double jitter = 10.0 * M_PI / 180.0;
+  const auto R = sample_orientations(p, targets, 30, jitter, rng);
+  ASSERT_EQ(R.size(), 30u);
+  std::vector<Eigen::Vector3d> dirs;  // the target at the position itself is skipped
+  for (const auto& t : targets)
+    if ((t - p).norm() > 1e-9) dirs.push_back((t - p).normalized());
+  ASSERT_EQ(dirs.size(), 3u);
+  for (std::size_t k = 0; k < R.size(); ++k) {
+    const double angle = std::acos(std::clamp(R[k].col(2).dot(dirs[k % 3]), -1.0, 1.0));
+    if (k < 3) {
+      EXPECT_NEAR(angle, 0.0, 1e-9) << k;  // the first sample of each target is exact
+    }
+    EXPECT_LE(angle, jitter + 1e-9) << k;
+  }
+  std::mt19937_64 again(9);
+  const auto R2 = sample_orientations(p, targets, 30, jitter, again);
+  for (std::size_t k = 0; k < R.size(); ++k) EXPECT_EQ(R[k], R2[k]);
+  std::mt19937_64 r3(1);
+  EXPECT_TRUE(sample_orientations(p, {p}, 5, jitter, r3).empty());
+}
+
+// A random 14×12×10 grid of free, unknown and occupied cells, with random targets.
+struct RandomGrid {
+  map::OccupancyMap map{0.1};
+  std::unique_ptr<map::DenseGrid> grid;
+  std::vector<std::uint8_t> target;
+  explicit RandomGrid(std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int z = 0; z < 10; ++z)
+      for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 14; ++x) {
+          const double r = u(rng);
+          const map::VoxelKey k{std::uint16_t(32768 + x), std::uint16_t(32768 + y), std::uint16_t(32768 + z)};
+          if (r < 0.04) map.set_state(k, map::VoxelState::Occupied);
+          else if (r < 0.6) map.set_state(k, map::VoxelState::Free);
+        }
+    grid = std::make_unique<map::DenseGrid>(
+        map, Eigen::AlignedBox3d(Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(1.4, 1.2, 1.0)));
+    target.resize(grid->cell_count());
+    for (auto& t : target) t = u(rng) < 0.3;
+  }
+};
+
+// The oracle: the cells whose boxes the segment [0, range] enters, in order of entry; walk
+// them until an occupied one.
+std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                                  double range) {
+  const Eigen::Vector3d d = dir.normalized();
+  std::vector<std::pair<double, std::size_t>> entered;
+  for (std::size_t i = 0; i < g.grid->cell_count(); ++i) {
+    const Eigen::Vector3d c = g.grid->center_of(g.grid->key(i));
+    double t0 = 0.0, t1 = range;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = c[a] - 0.05, hi = c[a] + 0.05;
+      if (std::abs(d[a]) < 1e-15) {
+        if (o[a] < lo || o[a] >= hi) t0 = INFINITY;
+        continue;
+      }
+      double ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
+    if (t0 < t1) entered.push_back({t0, i});
+  }
+  std::sort(entered.begin(), entered.end());
+  std::set<std::size_t> seen;
+  for (const auto& [t, i] : entered) {
+    if (g.grid->state_at(i) == map::VoxelState::Occupied) break;
+    if (g.target[i]) seen.insert(i);
+  }
+  return seen;
+}
+
+TEST(FovScorer, CountsTheDistinctTargetCellsTheRaysCross) {
+  for (std::uint32_t seed : {1u, 2u, 3u}) {
+    const RandomGrid g(seed);
+    std::mt19937 rng(seed + 100);
+    std::uniform_real_distribution<double> u(0.05, 0.95);
+    io::Intrinsics K;
+    K.width = 64;
+    K.height = 48;
+    K.fx = K.fy = 52.5;
+    K.cx = 31.5;
+    K.cy = 23.5;
+    const auto rays = ray_fan(K, 8, 6);
+    const double depth_max = 0.9;
+    FovScorer scorer(*g.grid, g.target, rays, depth_max);
+    FovScorer::Workspace ws;
+    for (int pose = 0; pose < 20; ++pose) {
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+      T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+      std::set<std::size_t> expected;
+      for (const auto& r : rays) {
+        const auto s = oracle_seen(g, T.translation(), T.linear() * r, depth_max * r.norm());
+        expected.insert(s.begin(), s.end());
+      }
+      std::vector<std::size_t> seen;
+      const auto score = scorer.score(T, ws, &seen);
+      ASSERT_EQ(score.targets_seen, expected.size()) << "seed " << seed << " pose " << pose;
+      ASSERT_EQ(seen, std::vector<std::size_t>(expected.begin(), expected.end()));
+      ASSERT_GT(score.cells_visited, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fvx::viewpoints
