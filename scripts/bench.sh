@@ -7,6 +7,10 @@
 #    against brute force on a small scene;
 #  - frontiers and voids: incremental updates against recomputing from scratch after each
 #    of 15 Kinect frames (Redwood living room, from FVX_REAL_DATA; skipped without it);
+#  - next best view: the search on four synthetic scenes (two scans each, 2.5 cm) against the
+#    exhaustive strategy on the same capability map (data/arms/fvx-arm.fcm), with the time
+#    split, and field-of-view ray casting in cells/s against a plain dense 3-D DDA and
+#    octree look-ups;
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
@@ -31,6 +35,7 @@ if [ -d "$redwood" ]; then
 else
   echo "== frontiers and voids: skipped ($redwood not found; set FVX_REAL_DATA)"
 fi
+echo "== next best view" && "$build/tests/bench/bench_nbv" data/arms/fvx-arm.fcm 5
 youbot="$data/arms/youbot_arm.urdf"
 if [ -f "$youbot" ]; then
   echo "== capability maps" && "$build/tests/bench/bench_capmap" "$youbot"

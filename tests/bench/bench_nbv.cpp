@@ -116,11 +116,7 @@ int main(int argc, char** argv) {
     std::vector<double> grid, accum, prune, sample, score, total;
     nbv::Result fv;
     for (int r = 0; r < repeats; ++r) {
-      nbv::Config c;
-      if (const char* sep = std::getenv("FVX_SEP")) c.min_separation_m = std::atof(sep);
-      if (const char* o = std::getenv("FVX_ORI")) c.orientations_per_cell = std::atoi(o);
-      if (const char* j = std::getenv("FVX_JIT")) c.jitter_deg = std::atof(j);
-      fv = nbv::select(map, a, reach, c);
+      fv = nbv::select(map, a, reach, nbv::Config{});
       grid.push_back(fv.timing.grid_s);
       accum.push_back(fv.timing.accumulation_s);
       prune.push_back(fv.timing.pruning_s);
