@@ -28,3 +28,11 @@ echo "== fvx simulate --ground-truth: the scene's cells at 2.5 cm" >&2
 jq -r '.results.map | "map: \(.occupied_leaves) occupied and \(.free_leaves) free leaves, \(.free_volume_m3 * 1000 | floor) dm3 known free"' "$out/integrate.json"
 jq -r '.results.ground_truth | "ground truth: \(.free_volume_m3 * 1000 | floor) dm3 free in the search space; hidden inside boxes: " + ([.containers[] | "\(.name) \(.free_volume_dm3 | floor) dm3"] | join(", "))' "$out/ground-truth.json"
 echo "open the map with: octovis $out/map.ot   (ground truth: $out/ground-truth.bt)" >&2
+echo "== fvx nbv: the next best view for the fvx arm standing at (0.2, 0, 0) (data/arms/fvx-arm.fcm)" >&2
+"$fvx" nbv "$out/map.ot" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 --arm data/arms/fvx-arm.urdf \
+  --bounds 0.35,-0.75,0.0,1.3,0.9,0.55 --top 3 --utility-cloud "$out/utility.ply" --picture "$out/utility.png" \
+  -o "$out/views.json"
+jq -r '.results | "\(.void_cells) void cells in \(.void_clusters) clusters, \(.frontier_voids_open) with a frontier; \(.utility_vectors) utility vectors; \(.poses_scored) poses scored"' "$out/views.json"
+jq -r '.results.views[] | "view \(.rank): sensor at \(.position_m | map(. * 1000 | round / 1000)) looking \(.viewing_direction | map(. * 100 | round / 100)), sees \(.void_cells_seen) void cells (\(.utility_dm3) dm3)"' "$out/views.json"
+jq -r 'if .results.views == [] then "no view: \(.results.reason)" else empty end' "$out/views.json"
+echo "the utility field: $out/utility.ply (pcl_viewer, CloudCompare), $out/utility.png" >&2

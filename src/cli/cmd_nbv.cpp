@@ -1,5 +1,6 @@
 // fvx nbv — a map (+ an arm's capability map) → the ranked next best views (paper §IV-C,
 // Algorithm 1 and Eq. 3).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -48,7 +49,7 @@ const CommandSpec kNbvSpec = {
              depth_camera_options(),
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
-                                              "yellow, green (high); pruned cells grey"},
+                                              "yellow, green (high) by rank; pruned cells grey"},
                  {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view"},
                  {"timing", 0, nullptr, "add the search time split (grid, accumulation, pruning, sampling, "
                                         "scoring) and ray-casting speed to the report"},
@@ -62,15 +63,30 @@ io::Rgb ramp(double t) {  // red → yellow → green, as the paper's Figure 4
   return t < 0.5 ? io::Rgb{230, std::uint8_t(230 * 2 * t), 30} : io::Rgb{std::uint8_t(230 * 2 * (1 - t)), 200, 30};
 }
 
-void write_utility_cloud(const std::string& path, const nbv::Result& r) {
-  double max_kept = 0.0;
+/// Each kept cell's utility as its rank among the kept cells, in [0, 1]: utility spans orders
+/// of magnitude (it piles up next to the frontier), so a linear scale would paint nearly all
+/// of it "low".
+std::vector<double> utility_ranks(const nbv::Result& r) {
+  std::vector<double> kept;
   for (const auto& c : r.utility_field)
-    if (c.kept) max_kept = std::max(max_kept, c.utility_m3);
+    if (c.kept) kept.push_back(c.utility_m3);
+  std::sort(kept.begin(), kept.end());
+  std::vector<double> ranks;
+  for (const auto& c : r.utility_field) {
+    const auto below = std::lower_bound(kept.begin(), kept.end(), c.utility_m3) - kept.begin();
+    ranks.push_back(kept.size() > 1 ? double(below) / double(kept.size() - 1) : 1.0);
+  }
+  return ranks;
+}
+
+void write_utility_cloud(const std::string& path, const nbv::Result& r) {
+  const std::vector<double> rank = utility_ranks(r);
   std::vector<Eigen::Vector3f> points;
   std::vector<io::Rgb> colors;
-  for (const auto& c : r.utility_field) {
+  for (std::size_t i = 0; i < r.utility_field.size(); ++i) {
+    const auto& c = r.utility_field[i];
     points.push_back(c.center_m.cast<float>());
-    colors.push_back(c.kept ? ramp(c.utility_m3 / max_kept) : io::Rgb{170, 170, 170});
+    colors.push_back(c.kept ? ramp(rank[i]) : io::Rgb{170, 170, 170});
   }
   io::write_colored_cloud(path, points, colors);
 }
@@ -84,19 +100,17 @@ void write_utility_picture(const std::string& path, const map::OccupancyMap& map
   io::PictureLayer voids{"void", {140, 60, 200}, {}, true, false};
   for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
   layers.push_back(std::move(voids));
-  double max_kept = 0.0;
-  for (const auto& c : r.utility_field)
-    if (c.kept) max_kept = std::max(max_kept, c.utility_m3);
+  const std::vector<double> rank = utility_ranks(r);
   io::PictureLayer pruned{"utility, pruned", {200, 200, 200}, {}, true, false};
-  io::PictureLayer low{"utility low", ramp(0.0), {}, false, false}, mid{"utility medium", ramp(0.5), {}, false, false},
-      high{"utility high", ramp(1.0), {}, false, false};
-  for (const auto& c : r.utility_field) {
+  io::PictureLayer low{"utility, lowest third", ramp(0.0), {}, false, false},
+      mid{"utility, middle third", ramp(0.5), {}, false, false}, high{"utility, highest third", ramp(1.0), {}, false, false};
+  for (std::size_t i = 0; i < r.utility_field.size(); ++i) {
+    const auto& c = r.utility_field[i];
     if (!c.kept) {
       pruned.centers_m.push_back(c.center_m);
       continue;
     }
-    const double t = c.utility_m3 / max_kept;
-    (t < 1.0 / 3 ? low : t < 2.0 / 3 ? mid : high).centers_m.push_back(c.center_m);
+    (rank[i] < 1.0 / 3 ? low : rank[i] < 2.0 / 3 ? mid : high).centers_m.push_back(c.center_m);
   }
   for (auto* layer : {&pruned, &low, &mid, &high}) layers.push_back(std::move(*layer));
   io::PictureLayer best{"best view", {30, 90, 230}, {}, false, false};
