@@ -2,7 +2,8 @@
 # One command on a fresh machine: installs what is missing, builds fvx, and runs the main job
 # on the bundled sample: a virtual Kinect scans a replica of the paper's second setting
 # (data/scenes/paper-setting-2.ply) from four views, fvx integrates the scans into an
-# OctoMap, and the map is compared with the scene's voxel ground truth.
+# OctoMap, the map is compared with the scene's voxel ground truth, and fvx nbv ranks the next
+# best views for the project's arm (data/arms/fvx-arm.urdf, its committed capability map).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
