@@ -51,6 +51,7 @@ const CommandSpec kNbvSpec = {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
                                               "yellow, green (high) by rank; pruned cells grey"},
                  {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view"},
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
                  {"timing", 0, nullptr, "add the search time split (grid, accumulation, pruning, sampling, "
                                         "scoring) and ray-casting speed to the report"},
                  {"help", 'h', nullptr, "show this help"},
@@ -246,8 +247,14 @@ int run_nbv(const Args& args) {
     reach->ik.angle_tolerance_rad = capability_map->header().angle_tolerance_rad;
   }
 
+  Progress progress(args.has("progress"));
+  config.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
+    progress.update("fvx nbv: " + stage + (total ? " " + std::to_string(done) + "/" + std::to_string(total) : ""));
+  };
+  progress.update("fvx nbv: frontiers, voids and frontier-voids of " + args.positional[0]);
   const frontier_voids::Analysis a = analyse_map(map, bounds, cluster_config);
   const nbv::Result r = nbv::select(map, a, reach, config);
+  progress.finish();
   if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);
   if (args.has("picture")) write_utility_picture(args.get("picture"), map, a, r);
 

@@ -46,6 +46,7 @@ namespace detail {
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
 Result select_frontier_void(Search& s, Result result) {
   auto t0 = Clock::now();
+  if (s.config.progress) s.config.progress("utility vectors (Algorithm 1)", 0, 0);
   utility::Config utility_config;
   utility_config.sensor_range_m = s.config.sensor.depth_max_m;  // s_r
   utility_config.threads = s.config.threads;
@@ -168,6 +169,7 @@ Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& anal
     return result;
   }
   auto t0 = detail::Clock::now();
+  if (config.progress) config.progress("dense grid and distance transform", 0, 0);
   detail::Search search(map, analysis, reach, config);
   result.timing.grid_s = detail::seconds_since(t0);
   switch (config.strategy) {

@@ -49,6 +49,7 @@ Result select_exhaustive(Search& s, Result result) {
   const Eigen::Isometry3d& T_world_base = s.reach->T_world_base;
   Pruning& pruning = result.pruning;
   const auto spheres = void_spheres(s);
+  if (s.config.progress) s.config.progress("enumerating the capability map", 0, cm.voxels().size());
   double half_angle = 0.0, longest = 1.0;
   for (const Eigen::Vector3d& ray : s.rays_sensor) {
     half_angle = std::max(half_angle, std::acos(1.0 / ray.norm()));
@@ -112,6 +113,7 @@ Result select_exhaustive(Search& s, Result result) {
 
 Result select_frontier(Search& s, Result result) {
   auto t0 = Clock::now();
+  if (s.config.progress) s.config.progress("rays in front of the largest frontier cluster", 0, 0);
   // The largest frontier cluster (ties: the lower id).
   const frontiers::Cluster* target = nullptr;
   for (const auto& c : s.a.frontier_clusters)

@@ -112,13 +112,16 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
       std::max(1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
                                       unsigned(std::max<std::size_t>(1, poses.size()))));
   std::atomic<std::size_t> next{0};
-  auto work = [&] {
+  auto work = [&](bool report) {
     viewpoints::FovScorer::Workspace ws;
-    for (std::size_t i = next++; i < poses.size(); i = next++) scores[i] = scorer.score(poses[i].T_world_sensor, ws);
+    for (std::size_t i = next++; i < poses.size(); i = next++) {
+      scores[i] = scorer.score(poses[i].T_world_sensor, ws);
+      if (report && config.progress && i % 256 == 0) config.progress("scoring poses", i, poses.size());
+    }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
+  work(true);
   for (auto& t : pool) t.join();
   std::vector<std::size_t> seen(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {

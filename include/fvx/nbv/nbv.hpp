@@ -8,6 +8,7 @@
 /// search stops after N valid poses, and c* = argmax U (Eq. 3).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,9 @@ struct Config {
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
   unsigned threads = 0;               ///< scoring threads; 0: all cores
+  /// Called on the calling thread as the search goes: the stage's name, work done, work in
+  /// all (0 when unknown). Empty: silent.
+  std::function<void(const std::string& stage, std::size_t done, std::size_t total)> progress;
 
   std::vector<std::string> validate() const;
 };
