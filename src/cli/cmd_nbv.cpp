@@ -44,7 +44,7 @@ const CommandSpec kNbvSpec = {
                                                          "box of the known cells)"},
                  {"min-fit-score", 0, "S", "void clusters keep a fit score (Eq. 2) at or above S (default 0.7)"},
                  {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)"},
-                 {"threads", 0, "N", "scoring threads (default 0: all cores)"},
+                 {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)"},
              },
              depth_camera_options(),
              {

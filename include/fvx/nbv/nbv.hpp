@@ -57,7 +57,7 @@ struct Config {
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
-  unsigned threads = 0;               ///< scoring threads; 0: all cores
+  unsigned threads = 0;               ///< accumulation and scoring threads; 0: all cores (same result)
   /// Called on the calling thread as the search goes: the stage's name, work done, work in
   /// all (0 when unknown). Empty: silent.
   std::function<void(const std::string& stage, std::size_t done, std::size_t total)> progress;
