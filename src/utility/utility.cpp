@@ -27,6 +27,10 @@ struct Partial {
   std::vector<std::uint64_t> util_cells;
   std::vector<Slots> contributors;
   std::size_t vectors = 0;
+  // The cells the current frontier-void reached, each once: its contributor entries are
+  // written after its rays, not at every cell a ray passes (most passes repeat a cell).
+  std::vector<std::int32_t> last_frontier_void;
+  std::vector<std::size_t> touched;
 };
 
 /// Algorithm 1 for one frontier-void: every corner, every frontier cell of its clusters.
@@ -47,18 +51,23 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
         grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
           if (s != map::VoxelState::Free) return false;
           out.util_cells[index] += u;
-          for (auto& slot : out.contributors[index]) {
-            if (slot == fv_index) break;
-            if (slot < 0) {
-              slot = fv_index;
-              break;
-            }
+          if (out.last_frontier_void[index] != fv_index) {
+            out.last_frontier_void[index] = fv_index;
+            out.touched.push_back(index);
           }
           return true;
         });
       }
     }
   }
+  // This thread takes frontier-voids in global order: append to each cell's first free slot.
+  for (const std::size_t index : out.touched)
+    for (auto& slot : out.contributors[index])
+      if (slot < 0) {
+        slot = fv_index;
+        break;
+      }
+  out.touched.clear();
 }
 
 }  // namespace
@@ -86,6 +95,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   auto work = [&](Partial& part) {
     part.util_cells.assign(grid.cell_count(), 0);
     part.contributors.assign(grid.cell_count(), none);
+    part.last_frontier_void.assign(grid.cell_count(), -1);
     for (std::size_t i = next++; i < order.size(); i = next++)
       trace_frontier_void(grid, a, order[i], config.sensor_range_m, part);
   };
