@@ -103,6 +103,33 @@ TEST(CliNbv, AnswersEmptyWithAReasonWhenNothingReachableSeesAVoid) {
   EXPECT_NE(v["results"]["reason"].get<std::string>().find("no void cell"), std::string::npos);
 }
 
+TEST(CliNbv, SensorFileAndReferenceStrategies) {
+  const TempDir dir;
+  make_closed_box_map(dir);
+  std::ofstream(dir / "kinect.json") << R"({"fx": 525, "fy": 525, "cx": 319.5, "cy": 239.5, "width": 640,
+                                           "height": 480, "depth_min_m": 0.4, "depth_max_m": 2.5})";
+  RunResult r = run_fvx(dir, "nbv box.ot --no-capmap --sensor kinect.json --strategy frontier --top 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json v = json::parse(r.out);
+  EXPECT_EQ(v["config"]["sensor"]["depth_max_m"], 2.5);
+  EXPECT_EQ(v["config"]["sensor"]["depth_min_m"], 0.4);
+  EXPECT_EQ(v["config"]["strategy"], "frontier");
+  ASSERT_FALSE(v["results"]["views"].empty());
+  EXPECT_GT(v["results"]["views"][0]["frontier_cells_seen"].get<int>(), 0);
+  // Flags override the file.
+  r = run_fvx(dir, "nbv box.ot --no-capmap --sensor kinect.json --depth-max 3 --top 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["config"]["sensor"]["depth_max_m"], 3.0);
+  // Exhaustive on the committed map: every view is a capability-map pose.
+  r = run_fvx(dir, "nbv box.ot --capmap '" + source("data/arms/fvx-arm.fcm") +
+                       "' --base 0.2,0,0,0,0,0 --strategy exhaustive --rays 20x15 --rolls 1 --top 3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  v = json::parse(r.out);
+  ASSERT_FALSE(v["results"]["views"].empty());
+  EXPECT_GT(v["results"]["pruning"]["culled_no_void_in_frustum"].get<int>(), 0);
+  EXPECT_TRUE(v["results"]["views"][0]["joints_rad"].is_null());
+}
+
 TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
   const TempDir dir;
   make_closed_box_map(dir);

@@ -174,6 +174,18 @@ TEST(Nbv, WithoutOpenVoidsTheAnswerIsEmptyWithAReason) {
   EXPECT_NE(r.reason.find("enclosed"), std::string::npos) << r.reason;
 }
 
+TEST(Nbv, TheSensorStaysInsideTheViewBounds) {
+  const ClosedBox& box = closed_box();
+  Config config = coarse();
+  config.top = 50;
+  // Only the half of the room on the −y side of the opening, above the lid.
+  config.view_bounds_m = Eigen::AlignedBox3d(Eigen::Vector3d(0.0, -1.5, 0.45), Eigen::Vector3d(1.6, -0.05, 1.5));
+  const Result r = select(box.map, box.analysis, std::nullopt, config);
+  ASSERT_FALSE(r.views.empty()) << r.reason;
+  EXPECT_GT(r.pruning.outside_view_bounds, 0u);
+  for (const View& v : r.views) EXPECT_TRUE(config.view_bounds_m->contains(v.T_world_sensor.translation()));
+}
+
 TEST(Nbv, TheFrontierStrategyViewsTheLargestFrontierCluster) {
   const ClosedBox& box = closed_box();
   Config config = coarse();
