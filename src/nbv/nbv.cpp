@@ -46,8 +46,12 @@ namespace detail {
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
 Result select_frontier_void(Search& s, Result result) {
   auto t0 = Clock::now();
-  if (s.config.progress) s.config.progress("utility vectors (Algorithm 1)", 0, 0);
   utility::Config utility_config;
+  if (s.config.progress)
+    utility_config.progress = [&](std::size_t done, std::size_t total) {
+      if (done % std::max<std::size_t>(1, total / 100) == 0)  // a hundred lines at most
+        s.config.progress("utility vectors (Algorithm 1), frontier-voids", done, total);
+    };
   utility_config.sensor_range_m = s.config.sensor.depth_max_m;  // s_r
   utility_config.threads = s.config.threads;
   const utility::Field field = utility::accumulate(s.grid, s.a, utility_config);

@@ -116,7 +116,8 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
     viewpoints::FovScorer::Workspace ws;
     for (std::size_t i = next++; i < poses.size(); i = next++) {
       scores[i] = scorer.score(poses[i].T_world_sensor, ws);
-      if (report && config.progress && i % 256 == 0) config.progress("scoring poses", i, poses.size());
+      if (report && config.progress && i % std::max<std::size_t>(256, poses.size() / 100) == 0)
+        config.progress("scoring poses", i, poses.size());
     }
   };
   std::vector<std::thread> pool;

@@ -92,16 +92,18 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
                              unsigned(std::max<std::size_t>(1, order.size()))));
   std::vector<Partial> parts(threads);
   std::atomic<std::size_t> next{0};
-  auto work = [&](Partial& part) {
+  auto work = [&](Partial& part, bool report) {
     part.util_cells.assign(grid.cell_count(), 0);
     part.contributors.assign(grid.cell_count(), none);
     part.last_frontier_void.assign(grid.cell_count(), -1);
-    for (std::size_t i = next++; i < order.size(); i = next++)
+    for (std::size_t i = next++; i < order.size(); i = next++) {
+      if (report && config.progress) config.progress(i, order.size());
       trace_frontier_void(grid, a, order[i], config.sensor_range_m, part);
+    }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, std::ref(parts[t]));
-  work(parts[0]);
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, std::ref(parts[t]), false);
+  work(parts[0], true);
   for (auto& t : pool) t.join();
 
   // Merge: sums of integers, and each cell's contributors from all threads in global order.

@@ -9,6 +9,7 @@
 /// utility see many voids through their frontiers: candidate viewpoints.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ namespace fvx::utility {
 struct Config {
   double sensor_range_m = 4.0;  ///< s_r: the longest a utility ray goes, metres (Kinect v1: 4)
   unsigned threads = 0;         ///< 0: all cores; the field is the same on any count
+  /// Called on the calling thread now and then: frontier-voids traced so far, and in all.
+  std::function<void(std::size_t done, std::size_t total)> progress;
   std::vector<std::string> validate() const;
 };
 
