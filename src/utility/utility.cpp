@@ -29,7 +29,7 @@ struct Partial {
   std::size_t vectors = 0;
   // The cells the current frontier-void reached, each once: its contributor entries are
   // written after its rays, not at every cell a ray passes (most passes repeat a cell).
-  std::vector<std::int32_t> last_frontier_void;
+  std::vector<std::uint64_t> touched_bits;  ///< one bit per cell (fits in cache, unlike an int per cell)
   std::vector<std::size_t> touched;
 };
 
@@ -51,8 +51,10 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
         grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
           if (s != map::VoxelState::Free) return false;
           out.util_cells[index] += u;
-          if (out.last_frontier_void[index] != fv_index) {
-            out.last_frontier_void[index] = fv_index;
+          std::uint64_t& word = out.touched_bits[index >> 6];
+          const std::uint64_t bit = std::uint64_t(1) << (index & 63);
+          if (!(word & bit)) {
+            word |= bit;
             out.touched.push_back(index);
           }
           return true;
@@ -61,12 +63,14 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
     }
   }
   // This thread takes frontier-voids in global order: append to each cell's first free slot.
-  for (const std::size_t index : out.touched)
+  for (const std::size_t index : out.touched) {
+    out.touched_bits[index >> 6] = 0;  // cleared for the next frontier-void
     for (auto& slot : out.contributors[index])
       if (slot < 0) {
         slot = fv_index;
         break;
       }
+  }
   out.touched.clear();
 }
 
@@ -95,7 +99,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   auto work = [&](Partial& part, bool report) {
     part.util_cells.assign(grid.cell_count(), 0);
     part.contributors.assign(grid.cell_count(), none);
-    part.last_frontier_void.assign(grid.cell_count(), -1);
+    part.touched_bits.assign(grid.cell_count() / 64 + 1, 0);
     for (std::size_t i = next++; i < order.size(); i = next++) {
       if (report && config.progress) config.progress(i, order.size());
       trace_frontier_void(grid, a, order[i], config.sensor_range_m, part);
