@@ -7,14 +7,6 @@
 #include "fvx/io/visual.hpp"
 
 namespace fvx::cli {
-namespace {
-
-const io::Rgb kFrontierRed = {220, 30, 30};
-const io::Rgb kVoidViolet = {140, 60, 200};
-const io::Rgb kOccupiedGrey = {150, 150, 150};
-
-}  // namespace
-
 std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name) {
   if (!args.has(name)) return std::nullopt;
   const auto b = parse_double_list(args.get(name), "--" + name + " (x0,y0,z0,x1,y1,z1)", 6);
@@ -124,23 +116,28 @@ void write_ellipsoids(const std::string& path, const std::vector<voids::VoidClus
   io::write_ply_mesh(path, vertices, triangles, colors);
 }
 
+io::PictureLayer occupied_layer(const map::OccupancyMap& map, const Eigen::AlignedBox3d& bounds_m) {
+  io::PictureLayer occupied{"occupied (lighter is higher)", kOccupiedGrey, {}, false, true};
+  for (const auto& c : map.occupied_centers())
+    if (bounds_m.contains(c.cast<double>())) occupied.centers_m.push_back(c.cast<double>());
+  return occupied;
+}
+
+io::PictureLayer void_layer(const map::OccupancyMap& map, const frontier_voids::Analysis& a) {
+  io::PictureLayer voids{"void", kVoidViolet, {}, true, false};
+  for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
+  return voids;
+}
+
 void write_picture(const std::string& path, const map::OccupancyMap& map, const frontier_voids::Analysis& a,
                    bool with_voids) {
   // Occupied cells shaded by height (the scene's shape); frontier and void cells translucent
   // over them, since in a view from above they lie at every height.
-  std::vector<io::PictureLayer> layers;
-  io::PictureLayer occupied{"occupied (lighter is higher)", kOccupiedGrey, {}, false, true};
-  for (const auto& c : map.occupied_centers())
-    if (a.bounds_m.contains(c.cast<double>())) occupied.centers_m.push_back(c.cast<double>());
-  layers.push_back(std::move(occupied));
+  std::vector<io::PictureLayer> layers = {occupied_layer(map, a.bounds_m)};
   io::PictureLayer frontier{"frontier", kFrontierRed, {}, true, false};
   for (const auto& k : a.frontier_cells) frontier.centers_m.push_back(map.center_of(k));
   layers.push_back(std::move(frontier));
-  if (with_voids) {
-    io::PictureLayer voids{"void", kVoidViolet, {}, true, false};
-    for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
-    layers.push_back(std::move(voids));
-  }
+  if (with_voids) layers.push_back(void_layer(map, a));
   io::write_top_view_png(path, map.resolution_m(), layers);
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/io/visual.hpp"
 #include "options.hpp"
 #include "report.hpp"
 
@@ -28,6 +29,15 @@ void write_cells_cloud(const std::string& path, const map::OccupancyMap& map,
                        const frontier_voids::Analysis& a, bool with_voids, bool by_cluster);
 /// The void ellipsoids (semi-axes a_j along e_j around μ) as one PLY mesh.
 void write_ellipsoids(const std::string& path, const std::vector<voids::VoidCluster>& clusters);
+/// The colours every picture and cloud of cells uses.
+inline const io::Rgb kFrontierRed = {220, 30, 30};
+inline const io::Rgb kVoidViolet = {140, 60, 200};
+inline const io::Rgb kOccupiedGrey = {150, 150, 150};
+
+/// Picture layers: the occupied cells within `bounds_m`, shaded by height; the void cells.
+io::PictureLayer occupied_layer(const map::OccupancyMap& map, const Eigen::AlignedBox3d& bounds_m);
+io::PictureLayer void_layer(const map::OccupancyMap& map, const frontier_voids::Analysis& a);
+
 /// Occupied cells grey, frontier cells red, void cells violet, seen from above.
 void write_picture(const std::string& path, const map::OccupancyMap& map, const frontier_voids::Analysis& a,
                    bool with_voids);

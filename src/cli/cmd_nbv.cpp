@@ -7,6 +7,7 @@
 #include "analysis_output.hpp"
 #include "command_table.hpp"
 #include "common_options.hpp"
+#include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/core/pose.hpp"
@@ -94,13 +95,10 @@ void write_utility_cloud(const std::string& path, const nbv::Result& r) {
 
 void write_utility_picture(const std::string& path, const map::OccupancyMap& map, const frontier_voids::Analysis& a,
                            const nbv::Result& r) {
-  std::vector<io::PictureLayer> layers;
-  io::PictureLayer occupied{"occupied (lighter is higher)", {150, 150, 150}, {}, false, true};
-  for (const auto& c : map.occupied_centers()) occupied.centers_m.push_back(c.cast<double>());
-  layers.push_back(std::move(occupied));
-  io::PictureLayer voids{"void", {140, 60, 200}, {}, true, false};
-  for (const auto& k : a.void_cells) voids.centers_m.push_back(map.center_of(k));
-  layers.push_back(std::move(voids));
+  // The whole map's occupied cells: viewpoints may lie outside the search space.
+  const map::Stats stats = map.stats();
+  std::vector<io::PictureLayer> layers = {
+      occupied_layer(map, Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m)), void_layer(map, a)};
   const std::vector<double> rank = utility_ranks(r);
   io::PictureLayer pruned{"utility, pruned", {200, 200, 200}, {}, true, false};
   io::PictureLayer low{"utility, lowest third", ramp(0.0), {}, false, false},
@@ -221,8 +219,12 @@ int run_nbv(const Args& args) {
       args.has("base") ? parse_xyz_rpy_deg(args.get("base"), "--base") : Eigen::Isometry3d::Identity();
   if (config.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
     throw UsageError("fvx nbv: --strategy exhaustive enumerates a capability map: give --capmap");
-  for (const char* path : {"utility-cloud", "picture"})
-    if (args.has(path) && args.get(path).empty()) throw UsageError(std::string("--") + path + ": empty file name");
+  // Output names are checked before the search, which may take seconds.
+  if (args.has("utility-cloud") && lowercase_extension(args.get("utility-cloud")) != ".ply" &&
+      lowercase_extension(args.get("utility-cloud")) != ".pcd")
+    throw UsageError("--utility-cloud " + args.get("utility-cloud") + ": expected a .ply or .pcd file");
+  if (args.has("picture") && lowercase_extension(args.get("picture")) != ".png")
+    throw UsageError("--picture " + args.get("picture") + ": expected a .png file");
 
   // Inputs first, so that a bad file fails before any work.
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);

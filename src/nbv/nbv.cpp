@@ -61,20 +61,17 @@ Result select_frontier_void(Search& s, Result result) {
   t0 = Clock::now();
   Pruning& pruning = result.pruning;
   std::vector<std::size_t> candidates;
-  std::vector<std::uint8_t> kept(s.grid.cell_count(), 0);
   for (std::size_t i = 0; i < field.util_m3.size(); ++i) {
     if (!(field.util_m3[i] > 0.0)) continue;
     ++pruning.utility_cells;
     const map::VoxelKey k = s.grid.key(i);
-    if (!s.keep_position(k, s.grid.center_of(k), pruning)) continue;
-    candidates.push_back(i);
-    kept[i] = 1;
+    const bool keep = s.keep_position(k, s.grid.center_of(k), pruning);
+    if (keep) candidates.push_back(i);
+    result.utility_field.push_back({s.grid.center_of(k), field.util_m3[i], keep});
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [&](std::size_t l, std::size_t r) { return field.util_m3[l] > field.util_m3[r]; });
   pruning.candidate_cells = candidates.size();
-  for (std::size_t i = 0; i < field.util_m3.size(); ++i)
-    if (field.util_m3[i] > 0.0) result.utility_field.push_back({s.grid.center_of(s.grid.key(i)), field.util_m3[i], kept[i] != 0});
   result.timing.pruning_s = seconds_since(t0);
 
   t0 = Clock::now();

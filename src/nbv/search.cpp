@@ -13,21 +13,17 @@ namespace fvx::nbv::detail {
 
 namespace {
 
-Eigen::AlignedBox3d grid_box(const map::OccupancyMap& map, const frontier_voids::Analysis& a,
-                             const Eigen::AlignedBox3d& view_bounds) {
-  // Rays run between the view bounds and the search space: the box around both, within the
-  // known cells (beyond them every cell is unknown and no viewpoint can be).
-  const map::Stats stats = map.stats();
-  Eigen::AlignedBox3d box = a.bounds_m;
-  box.extend(view_bounds);
-  if (stats.empty) return Eigen::AlignedBox3d();
-  return box.intersection(Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m));
-}
-
-Eigen::AlignedBox3d default_view_bounds(const map::OccupancyMap& map, const Config& config) {
-  if (config.view_bounds_m) return *config.view_bounds_m;
+Eigen::AlignedBox3d known_box(const map::OccupancyMap& map) {
   const map::Stats stats = map.stats();
   return stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
+}
+
+/// Rays run between the view bounds and the search space: the box around both, within the
+/// known cells (beyond them every cell is unknown and no viewpoint can be).
+Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
+                             const Eigen::AlignedBox3d& view_bounds) {
+  if (known.isEmpty()) return known;
+  return search_space.merged(view_bounds).intersection(known);
 }
 
 }  // namespace
@@ -38,8 +34,9 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       a(analysis),
       reach(reach_in),
       config(config_in),
-      view_bounds_m(default_view_bounds(map_in, config_in)),
-      grid(map_in, grid_box(map_in, analysis, view_bounds_m)) {
+      known_m(known_box(map_in)),
+      view_bounds_m(config_in.view_bounds_m ? *config_in.view_bounds_m : known_m),
+      grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m)) {
   void_label.assign(grid.cell_count(), -1);
   for (const auto& v : a.void_clusters)
     for (const map::VoxelKey& k : v.cells)

@@ -54,6 +54,7 @@ struct Search {
   const frontier_voids::Analysis& a;
   const std::optional<Reach>& reach;
   const Config& config;
+  Eigen::AlignedBox3d known_m;                   ///< the box of the map's known cells (empty map: empty)
   Eigen::AlignedBox3d view_bounds_m;
   map::DenseGrid grid;
   std::vector<std::int32_t> void_label;          ///< per grid cell: void cluster id, −1 elsewhere
