@@ -36,6 +36,9 @@ const CommandSpec kNbvSpec = {
                  {"orientations", 0, "K", "orientations sampled per candidate cell (default 2)"},
                  {"separation", 0, "M", "pass over cells nearer than M to a viewpoint already used, metres "
                                         "(default 0.15; 0: every cell in utility order)"},
+                 {"refine", 0, "K", "step the K best poses back along their optical axis and score the steps "
+                                    "(default 10; 0: off, as the paper)"},
+                 {"refine-step", 0, "M", "refinement step and its limit, metres: STEP or STEP,MAX (default 0.1,0.8)"},
                  {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
                  {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
                  {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
@@ -158,6 +161,7 @@ Json view_json(const nbv::View& v, int rank, double R, const frontier_voids::Ana
                     {"utility_dm3", frontier_voids::to_dm3(a.frontier_voids[std::size_t(fv)].utility_m3)}});
   j["utility_from"] = from;
   j["pose_index"] = v.pose_index;
+  j["stepped_back_from"] = v.stepped_back_from ? Json(*v.stepped_back_from) : Json(nullptr);
   return j;
 }
 
@@ -174,6 +178,8 @@ Json pruning_json(const nbv::Pruning& p) {
           {"unreachable_orientation", p.unreachable_orientation},
           {"ik_failed", p.ik_failed},
           {"valid_poses", p.valid_poses},
+          {"refinement_steps", p.refinement_steps},
+          {"refinement_poses", p.refinement_poses},
           {"culled_no_void_in_frustum", p.culled},
           {"seeing_no_void", p.seeing_nothing}};
 }
@@ -207,6 +213,16 @@ int run_nbv(const Args& args) {
   config.jitter_deg = args.number("jitter", config.jitter_deg, 0.0, 90.0);
   config.min_separation_m = args.number("separation", config.min_separation_m, 0.0, 10.0);
   config.clearance_m = args.number("clearance", config.clearance_m, 0.0, 2.0);
+  config.refine_poses = int(args.integer("refine", config.refine_poses, 0, max_int));
+  if (args.has("refine-step")) {
+    const std::string text = args.get("refine-step");
+    const bool with_max = text.find(',') != std::string::npos;
+    const std::vector<double> v = parse_double_list(text, "--refine-step", with_max ? 2 : 1);
+    config.refine_step_m = v[0];
+    if (with_max) config.refine_max_m = v[1];
+    if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
+      throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
+  }
   config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
@@ -270,6 +286,9 @@ int run_nbv(const Args& args) {
                       {"jitter_deg", config.jitter_deg},
                       {"clearance_m", config.clearance_m},
                       {"min_separation_m", config.min_separation_m},
+                      {"refine_poses", config.refine_poses},
+                      {"refine_step_m", config.refine_step_m},
+                      {"refine_max_m", config.refine_max_m},
                       {"exhaustive_rolls", config.exhaustive_rolls},
                       {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
                       {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},

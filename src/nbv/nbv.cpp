@@ -35,12 +35,63 @@ std::vector<std::string> Config::validate() const {
   if (!(clearance_m >= 0.0 && clearance_m <= 2.0)) problems.push_back("clearance_m must be in [0, 2] m");
   if (view_bounds_m && (view_bounds_m->isEmpty() || !view_bounds_m->min().allFinite() || !view_bounds_m->max().allFinite()))
     problems.push_back("view_bounds_m must be a finite, non-empty box");
+  if (refine_poses < 0) problems.push_back("refine_poses must be >= 0");
+  if (!(refine_step_m > 0.0 && refine_step_m <= refine_max_m && refine_max_m <= 10.0))
+    problems.push_back("refine_step_m and refine_max_m must satisfy 0 < step <= max <= 10 m");
   if (exhaustive_rolls < 1) problems.push_back("exhaustive_rolls must be >= 1");
   if (top < 1) problems.push_back("top must be >= 1");
   return problems;
 }
 
 namespace detail {
+
+namespace {
+
+/// With an arm, turns the rotation's optical axis to the nearest direction the capability
+/// map reaches at p, if the aim stays inside the image (a 5-DOF arm reaches only an arc of
+/// directions, so most raw samples would be refused).
+Eigen::Matrix3d snap_to_reach(const Search& s, const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) {
+  if (!s.reach) return R;
+  const std::vector<Eigen::Vector3d> reachable = s.reach->capmap->reachable_directions(s.reach->T_world_base, p_world);
+  if (reachable.empty()) return R;
+  const Eigen::Vector3d axis = R.col(2);
+  const auto nearest = std::max_element(reachable.begin(), reachable.end(),
+                                        [&](const auto& l, const auto& r) { return l.dot(axis) < r.dot(axis); });
+  if (nearest->dot(axis) < std::cos(s.half_fov_rad)) return R;
+  return Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
+}
+
+/// The refinement step (Config::refine_poses): the best poses, stepped back along their
+/// optical axis, each step kept if it passes the position and orientation checks.
+std::vector<Pose> stepped_back(const Search& s, const std::vector<Pose>& poses, const std::vector<std::size_t>& U,
+                               Pruning& pruning) {
+  std::vector<std::size_t> order(poses.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return U[l] > U[r]; });
+  std::vector<Pose> out;
+  Pruning checks;  // the refinement's own rejections are not the paper's pruning counts
+  for (std::size_t j = 0; j < order.size() && j < std::size_t(s.config.refine_poses) && U[order[j]] > 0; ++j) {
+    const Eigen::Isometry3d& T = poses[order[j]].T_world_sensor;
+    for (int step = 1; step * s.config.refine_step_m <= s.config.refine_max_m + 1e-9; ++step) {
+      const Eigen::Vector3d q = T.translation() - step * s.config.refine_step_m * T.linear().col(2);
+      const auto key = s.map.key_of(q);
+      if (!key || !s.grid.contains(*key)) break;  // beyond the known cells nothing is free
+      ++pruning.refinement_steps;
+      if (!s.keep_position(*key, s.grid.center_of(*key), checks)) continue;
+      Pose pose;
+      pose.T_world_sensor.translation() = s.grid.center_of(*key);
+      pose.T_world_sensor.linear() = snap_to_reach(s, pose.T_world_sensor.translation(), T.linear());
+      pose.cell = poses[order[j]].cell;  // it serves the same frontier-voids
+      pose.stepped_back_from = order[j];
+      if (s.keep_orientation(pose, s.config.seed ^ (0xD1B54A32D192ED03ull * (pruning.refinement_steps + 1)), checks))
+        out.push_back(std::move(pose));
+    }
+  }
+  pruning.refinement_poses = out.size();
+  return out;
+}
+
+}  // namespace
 
 // The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
@@ -98,23 +149,11 @@ Result select_frontier_void(Search& s, Result result) {
     }
     targets.insert(targets.end(), extremes.begin(), extremes.end());
     const std::size_t before = poses.size();
-    // With an arm, each sampled axis turns to the nearest direction the arm reaches there, if
-    // that keeps the aim inside the image (a 5-DOF arm reaches only an arc of directions,
-    // so most raw samples would be refused).
-    const std::vector<Eigen::Vector3d> reachable =
-        s.reach ? s.reach->capmap->reachable_directions(s.reach->T_world_base, p) : std::vector<Eigen::Vector3d>{};
-    for (Eigen::Matrix3d R :
+    for (const Eigen::Matrix3d& R :
          viewpoints::sample_orientations(p, targets, s.config.orientations_per_cell, jitter_rad, rng)) {
       if (poses.size() >= std::size_t(s.config.valid_poses)) break;
-      if (s.reach && !reachable.empty()) {
-        const Eigen::Vector3d axis = R.col(2);
-        const auto nearest = std::max_element(reachable.begin(), reachable.end(), [&](const auto& l, const auto& r) {
-          return l.dot(axis) < r.dot(axis);
-        });
-        if (nearest->dot(axis) >= std::cos(s.half_fov_rad)) R = Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
-      }
       Pose pose;
-      pose.T_world_sensor.linear() = R;
+      pose.T_world_sensor.linear() = snap_to_reach(s, p, R);
       pose.T_world_sensor.translation() = p;
       pose.cell = cell;
       if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
@@ -126,7 +165,11 @@ Result select_frontier_void(Search& s, Result result) {
   result.timing.sampling_s = seconds_since(t0);
 
   t0 = Clock::now();
-  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  std::vector<Pose> refined = stepped_back(s, poses, U, pruning);
+  const std::vector<std::size_t> U_refined = s.score(*s.void_scorer, refined, result);
+  poses.insert(poses.end(), std::make_move_iterator(refined.begin()), std::make_move_iterator(refined.end()));
+  U.insert(U.end(), U_refined.begin(), U_refined.end());
   result.views = s.rank(poses, U, &field.util_m3, &field);
   result.timing.scoring_s = seconds_since(t0);
 

@@ -149,6 +149,7 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     View v;
     v.T_world_sensor = pose.T_world_sensor;
     v.pose_index = i;
+    if (pose.stepped_back_from != kNoCell) v.stepped_back_from = pose.stepped_back_from;
     v.joints_rad = pose.joints_rad;
     v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
     std::map<int, std::size_t> per_void;

@@ -23,8 +23,11 @@ constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
 /// A pose to score, with where it came from.
 struct Pose {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
-  std::size_t cell = kNoCell;        ///< grid index of its viewpoint cell
+  /// Grid index of its viewpoint cell (stepped back: of the pose it stepped back from),
+  /// where util(c) and the contributing frontier-voids are read.
+  std::size_t cell = kNoCell;
   Eigen::VectorXd joints_rad;
+  std::size_t stepped_back_from = kNoCell;  ///< refinement: the pose (index) it stepped back from
 };
 
 struct Search {

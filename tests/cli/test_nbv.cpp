@@ -153,6 +153,8 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
       {"nbv box.ot --no-capmap --strategy exhaustive", 2, "exhaustive"},
       {"nbv box.ot --no-capmap --strategy best", 2, "--strategy"},
       {"nbv box.ot --no-capmap --rays 0x30", 2, "--rays"},
+      {"nbv box.ot --no-capmap --refine -1", 2, "--refine"},
+      {"nbv box.ot --no-capmap --refine-step 0.5,0.1", 2, "--refine-step"},
       {"nbv box.ot --no-capmap --base 1,2,3", 2, "--base"},
       {"nbv box.ot --capmap '" + source("data/arms/fvx-arm.fcm") + "' --base 1,2,3", 2, "--base"},
       {"nbv missing.ot --no-capmap", 1, "missing.ot"},

@@ -52,6 +52,13 @@ struct Config {
   /// so that the N poses spread over the useful region instead of piling up in its densest
   /// cells, metres. 0: every cell in utility order.
   double min_separation_m = 0.15;
+  /// Refinement (not in the paper): the `refine_poses` best scored poses are stepped back
+  /// along their optical axis by refine_step_m up to refine_max_m, and each step that passes
+  /// the same pruning and reach checks is scored too. Utility piles up next to the frontier,
+  /// where the view cone is narrowest; stepping back widens it. 0: off.
+  int refine_poses = 10;
+  double refine_step_m = 0.1;
+  double refine_max_m = 0.8;
   /// The sensor stays in this box (metres); default: the box of the map's known cells.
   std::optional<Eigen::AlignedBox3d> view_bounds_m;
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
@@ -77,6 +84,8 @@ struct View {
   std::vector<int> utility_from;
   Eigen::VectorXd joints_rad;            ///< IK configuration when an arm is given, else empty
   std::size_t pose_index = 0;            ///< order in which the pose was generated
+  /// Refinement: the pose_index of the sampled pose this one stepped back from.
+  std::optional<std::size_t> stepped_back_from;
 };
 
 /// What each step removed or kept, so a user can see why a region got no view.
@@ -93,6 +102,8 @@ struct Pruning {
   std::size_t unreachable_orientation = 0;  ///< the capability map has no bit for the direction
   std::size_t ik_failed = 0;                ///< the map's bit was set but IK missed the exact pose
   std::size_t valid_poses = 0;              ///< scored by ray tracing
+  std::size_t refinement_steps = 0;         ///< positions stepped back from the best poses
+  std::size_t refinement_poses = 0;         ///< … that passed pruning and reach, scored as well
   std::size_t culled = 0;                   ///< exhaustive: poses with no void cluster in their frustum (U = 0)
   std::size_t seeing_nothing = 0;           ///< valid poses with U = 0
 };

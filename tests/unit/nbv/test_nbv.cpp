@@ -3,6 +3,7 @@
 // clearance, determinism and the empty answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "fvx/core/error.hpp"
@@ -125,6 +126,46 @@ TEST(Nbv, EveryViewIsReachableFreeAndClearWithItsJoints) {
     EXPECT_GT(v.accumulated_utility_m3, 0.0);
   }
   for (std::size_t i = 1; i < r.views.size(); ++i) EXPECT_GE(r.views[i - 1].void_cells_seen, r.views[i].void_cells_seen);
+}
+
+// Refinement only adds poses: the best U never drops, the paper's N poses are unchanged, and
+// each stepped-back view lies on the optical axis behind the pose it came from.
+TEST(Nbv, SteppingBackAddsPosesBehindTheBestOnes) {
+  const ClosedBox& box = closed_box();
+  Config paper = coarse();  // free-flying: above the lid the arm reaches few steps back
+  paper.refine_poses = 0;
+  paper.top = 100;
+  Config refined = paper;
+  refined.refine_poses = 10;
+  const Result a = select(box.map, box.analysis, std::nullopt, paper),
+               b = select(box.map, box.analysis, std::nullopt, refined);
+  ASSERT_FALSE(a.views.empty());
+  EXPECT_EQ(a.pruning.refinement_steps, 0u);
+  EXPECT_EQ(a.pruning.valid_poses, b.pruning.valid_poses);
+  EXPECT_GT(b.pruning.refinement_steps, 0u);
+  EXPECT_EQ(b.poses_scored, a.poses_scored + b.pruning.refinement_poses);
+  EXPECT_GE(b.views.front().void_cells_seen, a.views.front().void_cells_seen);
+  std::size_t stepped = 0;
+  for (const View& v : b.views) {
+    if (!v.stepped_back_from) {
+      EXPECT_LT(v.pose_index, b.pruning.valid_poses);
+      continue;
+    }
+    ++stepped;
+    EXPECT_GE(v.pose_index, b.pruning.valid_poses);
+    const auto from = std::find_if(b.views.begin(), b.views.end(),
+                                   [&](const View& o) { return o.pose_index == *v.stepped_back_from; });
+    ASSERT_NE(from, b.views.end());  // it came from one of the best, which are listed (top 100)
+    const Eigen::Vector3d back = from->T_world_sensor.translation() - v.T_world_sensor.translation();
+    const Eigen::Vector3d axis = from->T_world_sensor.linear().col(2);
+    const double along = back.dot(axis), R = box.map.resolution_m();
+    EXPECT_GT(along, refined.refine_step_m - R);
+    EXPECT_LT(along, refined.refine_max_m + R);
+    EXPECT_LT((back - along * axis).norm(), R);  // snapped to a cell centre
+  }
+  EXPECT_GT(stepped, 0u) << "no stepped-back pose sees a void cell; steps " << b.pruning.refinement_steps
+                         << ", poses " << b.pruning.refinement_poses;
+  EXPECT_LE(stepped, b.pruning.refinement_poses);
 }
 
 TEST(Nbv, AFarBaseGivesNoViewAndSaysWhy) {
