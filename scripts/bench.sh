@@ -11,6 +11,9 @@
 #    exhaustive strategy on the same capability map (data/arms/fvx-arm.fcm), with the time
 #    split, and field-of-view ray casting in cells/s against a plain dense 3-D DDA and
 #    octree look-ups;
+#  - one explore view on each paper replica at 2.5 cm (the fvx arm): median and max time per
+#    stage (render, registration, integration, frontiers/voids, search) over the views of a
+#    run, with and without pose noise (registration on);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
@@ -36,6 +39,22 @@ else
   echo "== frontiers and voids: skipped ($redwood not found; set FVX_REAL_DATA)"
 fi
 echo "== next best view" && "$build/tests/bench/bench_nbv" data/arms/fvx-arm.fcm 5
+echo "== explore: time per stage and view (paper replicas, 2.5 cm, fvx arm at (0.2, 0, 0))"
+bench_out="$(mktemp -d)"
+for scene in paper-setting-1 paper-setting-2; do
+  for noise in "" "--pose-noise 0.02,2"; do
+    "$build/src/fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 \
+      --arm data/arms/fvx-arm.urdf $noise --format json -o "$bench_out/$scene${noise:+-noisy}" 2>/dev/null |
+      jq -r --arg name "$scene${noise:+ (pose noise 0.02,2)}" '
+        def med: sort | .[(length / 2 | floor)];
+        [.results.rows[].timing_s] as $t
+        | "\($name): \($t | length) views; median / max s: " +
+          ([("render", "registration", "integration", "frontiers_voids", "search") as $k
+            | "\($k) \([$t[][$k]] | med * 1000 | round / 1000) / \([$t[][$k]] | max * 1000 | round / 1000)"]
+           | join(", "))'
+  done
+done
+rm -rf "$bench_out"
 youbot="$data/arms/youbot_arm.urdf"
 if [ -f "$youbot" ]; then
   echo "== capability maps" && "$build/tests/bench/bench_capmap" "$youbot"

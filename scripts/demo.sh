@@ -4,6 +4,9 @@
 # (data/scenes/paper-setting-2.ply) from four views, fvx integrates the scans into an
 # OctoMap, the map is compared with the scene's voxel ground truth, and fvx nbv ranks the next
 # best views for the project's arm (data/arms/fvx-arm.urdf, its committed capability map).
+# Then fvx explore runs the whole loop of the paper on the same replica: the arm moves the
+# virtual Kinect view by view until no reachable view sees a void, and prints the per-view
+# table (the paper's columns plus ground truth).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -37,3 +40,8 @@ jq -r '.results | "\(.void_cells) void cells in \(.void_clusters) clusters, \(.f
 jq -r '.results.views[] | "view \(.rank): sensor at \(.position_m | map(. * 1000 | round / 1000)) looking \(.viewing_direction | map(. * 100 | round / 100)), sees \(.void_cells_seen) void cells (\(.utility_dm3) dm3)"' "$out/views.json"
 jq -r 'if .results.views == [] then "no view: \(.results.reason)" else empty end' "$out/views.json"
 echo "the utility field: $out/utility.ply (pcl_viewer, CloudCompare), $out/utility.png" >&2
+echo "== fvx explore: the closed loop on $scene with the fvx arm at (0.2, 0, 0), at most 15 views" >&2
+rm -rf "$out/session"
+"$fvx" explore "$scene" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 --arm data/arms/fvx-arm.urdf \
+  --max-views 15 --progress -o "$out/session"
+echo "the session: $out/session (manifest.json, scans/*.pcd, maps/*.ot for octovis, reports/*.json)" >&2

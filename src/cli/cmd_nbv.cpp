@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "analysis_output.hpp"
+#include "nbv_output.hpp"
 #include "command_table.hpp"
 #include "common_options.hpp"
 #include "fvx/core/atomic_file.hpp"
@@ -22,15 +23,13 @@ const CommandSpec kNbvSpec = {
     "the next best views: utility vectors, pruning by the arm's reach, U by ray tracing (Eq. 3)",
     options({{
                  {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
-                 {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)"},
-                 {"base", 0, "x,y,z,roll,pitch,yaw", "T_world_base: where the capability map's base stands, "
-                                                     "metres and degrees (default 0,0,0,0,0,0)"},
-                 {"no-capmap", 0, nullptr, "a free-flying sensor: no reachability constraint"},
-                 {"arm", 0, "URDF", "the arm the capability map was built for: each view then needs IK, "
-                                    "which gives its joint configuration"},
+             },
+             arm_options(),
+             {
                  {"strategy", 0, "NAME", "frontier-void (default, the paper's), exhaustive (every reachable "
-                                         "voxel and direction of the capability map) or frontier (view the "
-                                         "largest frontier cluster)"},
+                                         "voxel and direction of the capability map), frontier (view the "
+                                         "largest frontier cluster) or random (a random reachable view that "
+                                         "sees a void cell)"},
                  {"top", 'n', "N", "ranked views to report (default 10)"},
                  {"poses", 'N', "N", "stop after N valid poses (default 50, as in the paper)"},
                  {"orientations", 0, "K", "orientations sampled per candidate cell (default 2)"},
@@ -195,13 +194,38 @@ std::pair<int, int> parse_rays(const Args& args) {
 
 }  // namespace
 
+Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, double R,
+                      const std::vector<std::string>& joint_names, nbv::Strategy strategy, bool timing) {
+  Json views = Json::array();
+  for (std::size_t i = 0; i < r.views.size(); ++i)
+    views.push_back(view_json(r.views[i], int(i + 1), R, a, joint_names, strategy));
+  const std::size_t open = std::size_t(std::count_if(a.frontier_voids.begin(), a.frontier_voids.end(),
+                                                     [](const auto& fv) { return !fv.enclosed(); }));
+  Json results = {{"bounds_m", bounds_json(a.bounds_m)},
+                  {"void_cells", a.void_cells.size()},
+                  {"void_clusters", a.void_clusters.size()},
+                  {"frontier_cells", a.frontier_cells.size()},
+                  {"frontier_voids_open", open},
+                  {"utility_vectors", r.utility_vectors},
+                  {"poses_scored", r.poses_scored},
+                  {"best_void_cells_seen", r.views.empty() ? 0 : r.views.front().void_cells_seen},
+                  {"best_utility_dm3", r.views.empty() ? 0.0 : views.front()["utility_dm3"].get<double>()},
+                  {"reason", r.reason.empty() ? Json(nullptr) : Json(r.reason)},
+                  {"pruning", pruning_json(r.pruning)},
+                  {"views", views}};
+  if (timing) {
+    const auto& t = r.timing;
+    results["timing_s"] = {{"grid", t.grid_s},         {"accumulation", t.accumulation_s}, {"pruning", t.pruning_s},
+                           {"sampling", t.sampling_s}, {"scoring", t.scoring_s},           {"total", t.total_s},
+                           {"rays", t.rays},           {"cells_visited", t.cells_visited},
+                           {"cells_per_s", t.scoring_s > 0 ? double(t.cells_visited) / t.scoring_s : 0.0}};
+  }
+  return results;
+}
+
 int run_nbv(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx nbv: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
-  if (args.has("capmap") == args.has("no-capmap"))
-    throw UsageError("fvx nbv: give --capmap FILE.fcm (with --base) for an arm, or --no-capmap for a free-flying sensor");
-  if (args.has("no-capmap") && (args.has("base") || args.has("arm")))
-    throw UsageError("fvx nbv: --base and --arm need --capmap");
   const auto max_int = std::numeric_limits<int>::max();
   nbv::Config config;
   config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
@@ -231,8 +255,7 @@ int run_nbv(const Args& args) {
   voids::ClusterConfig cluster_config;
   cluster_config.min_fit_score = args.number("min-fit-score", cluster_config.min_fit_score, 0.0, 1.0, true);
   cluster_config.seed = config.seed;
-  const Eigen::Isometry3d T_world_base =
-      args.has("base") ? parse_xyz_rpy_deg(args.get("base"), "--base") : Eigen::Isometry3d::Identity();
+  check_arm_options(args, "fvx nbv");
   if (config.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
     throw UsageError("fvx nbv: --strategy exhaustive enumerates a capability map: give --capmap");
   // Output names are checked before the search, which may take seconds.
@@ -244,26 +267,11 @@ int run_nbv(const Args& args) {
 
   // Inputs first, so that a bad file fails before any work.
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
-  std::optional<capmap::CapabilityMap> capability_map;
-  std::optional<capmap::Arm> arm;
-  std::optional<nbv::Reach> reach;
-  if (args.has("capmap")) {
-    capability_map = capmap::CapabilityMap::load(args.get("capmap"));
-    if (capability_map->header().shard_count != 1)
-      throw UsageError("fvx nbv: " + args.get("capmap") + " is shard " +
-                       std::to_string(capability_map->header().shard_index) + " of " +
-                       std::to_string(capability_map->header().shard_count) + "; merge the shards first (fvx capmap merge)");
-    if (args.has("arm")) {
-      arm = capmap::Arm::from_urdf(args.get("arm"), capmap::arm_config_of(capability_map->header()));
-      if (arm->urdf_hash() != capability_map->header().urdf_hash)
-        throw Error("fvx nbv: " + args.get("capmap") + " was built from another URDF than " + args.get("arm") +
-                    " (hash " + capability_map->header().urdf_hash + " vs " + arm->urdf_hash() +
-                    "); rebuild it with fvx capmap build");
-    }
-    reach = nbv::Reach{&*capability_map, T_world_base, arm ? &*arm : nullptr, {}};
-    reach->ik.position_tolerance_m = capability_map->header().position_tolerance_m;
-    reach->ik.angle_tolerance_rad = capability_map->header().angle_tolerance_rad;
-  }
+  ArmInputs arm_inputs;
+  load_arm_inputs(args, "fvx nbv", arm_inputs);
+  const std::optional<nbv::Reach>& reach = arm_inputs.reach;
+  const Eigen::Isometry3d& T_world_base = arm_inputs.T_world_base;
+  const std::optional<capmap::Arm>& arm = arm_inputs.arm;
 
   Progress progress(args.has("progress"));
   config.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
@@ -296,42 +304,12 @@ int run_nbv(const Args& args) {
                       {"seed", config.seed},
                       {"top", config.top},
                       {"T_world_base", reach ? pose_json(T_world_base) : Json(nullptr)}};
-  Json capmap_json = nullptr;
-  if (capability_map) {
-    const auto& h = capability_map->header();
-    capmap_json = {{"file", args.get("capmap")}, {"base_link", h.base_link}, {"tip_link", h.tip_link},
-                   {"urdf_hash", h.urdf_hash},   {"voxel_m", h.voxel_m},     {"directions", h.directions}};
-  }
   report["inputs"] = {{"map", args.positional[0]},
                       {"resolution_m", R},
-                      {"capmap", capmap_json},
+                      {"capmap", capmap_json(args, arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
-  Json views = Json::array();
-  for (std::size_t i = 0; i < r.views.size(); ++i)
-    views.push_back(view_json(r.views[i], int(i + 1), R, a, arm ? arm->joint_names() : std::vector<std::string>{},
-                              config.strategy));
-  const std::size_t open = std::size_t(std::count_if(a.frontier_voids.begin(), a.frontier_voids.end(),
-                                                     [](const auto& fv) { return !fv.enclosed(); }));
-  Json results = {{"bounds_m", bounds_json(a.bounds_m)},
-                  {"void_cells", a.void_cells.size()},
-                  {"void_clusters", a.void_clusters.size()},
-                  {"frontier_cells", a.frontier_cells.size()},
-                  {"frontier_voids_open", open},
-                  {"utility_vectors", r.utility_vectors},
-                  {"poses_scored", r.poses_scored},
-                  {"best_void_cells_seen", r.views.empty() ? 0 : r.views.front().void_cells_seen},
-                  {"best_utility_dm3", r.views.empty() ? 0.0 : views.front()["utility_dm3"].get<double>()},
-                  {"reason", r.reason.empty() ? Json(nullptr) : Json(r.reason)},
-                  {"pruning", pruning_json(r.pruning)},
-                  {"views", views}};
-  if (args.has("timing")) {
-    const auto& t = r.timing;
-    results["timing_s"] = {{"grid", t.grid_s},         {"accumulation", t.accumulation_s}, {"pruning", t.pruning_s},
-                           {"sampling", t.sampling_s}, {"scoring", t.scoring_s},           {"total", t.total_s},
-                           {"rays", t.rays},           {"cells_visited", t.cells_visited},
-                           {"cells_per_s", t.scoring_s > 0 ? double(t.cells_visited) / t.scoring_s : 0.0}};
-  }
-  report["results"] = results;
+  report["results"] = nbv_results_json(r, a, R, arm ? arm->joint_names() : std::vector<std::string>{},
+                                       config.strategy, args.has("timing"));
   Json warnings = a.warnings;
   if (!r.reason.empty()) warnings.push_back(r.reason);
   report["warnings"] = warnings;

@@ -53,26 +53,11 @@ const CommandSpec kSimulateSpec = {
 
 namespace {
 
-Eigen::Isometry3d look_at(const std::string& text) {
-  const std::vector<double> v = parse_double_list(text, "--look-at (ex,ey,ez,tx,ty,tz)", 6);
-  const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
-  const Eigen::Vector3d z = target - eye;
-  if (z.norm() < 1e-9) throw UsageError("--look-at: the eye and the target coincide");
-  const Eigen::Vector3d forward = z.normalized();
-  // Optical frame: x right, y down. Looking straight up or down, take world x as "up".
-  const Eigen::Vector3d up = std::abs(forward.z()) > 0.999 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d x = forward.cross(up).normalized();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() << x, forward.cross(x), forward;
-  T.translation() = eye;
-  return T;
-}
-
 std::vector<Eigen::Isometry3d> poses_from(const Args& args) {
   const int given = int(args.has("pose")) + int(args.has("look-at")) + int(args.has("poses"));
   if (given > 1) throw UsageError("fvx simulate: give one of --pose, --look-at, --poses");
   if (args.has("pose")) return {parse_pose(args.get("pose"), "--pose")};
-  if (args.has("look-at")) return {look_at(args.get("look-at"))};
+  if (args.has("look-at")) return {parse_look_at(args.get("look-at"), "--look-at")};
   std::vector<Eigen::Isometry3d> poses;
   if (args.has("poses"))
     for (const auto& e : io::read_trajectory(args.get("poses")).entries) poses.push_back(e.T_world_sensor);
@@ -96,16 +81,6 @@ sim::SensorConfig sensor_from(const Args& args) {
   c.threads = unsigned(args.integer("threads", 0, 0, 256));
   FVX_ASSERT(c.validate().empty(), "sensor options were checked above");
   return c;
-}
-
-sim::Scene scene_from(const std::string& source, const Args& args) {
-  const std::string prefix = "builtin:";
-  if (source.rfind(prefix, 0) == 0) {
-    sim::Scene s = sim::builtin_scene(source.substr(prefix.size()));
-    if (args.has("scene-info")) s.info = sim::read_scene_info(args.get("scene-info"));
-    return s;
-  }
-  return sim::load_scene(source, args.has("scene-info") ? args.get("scene-info") : "");
 }
 
 Json box_json(const Eigen::AlignedBox3d& b) { return {{"min", vec_json(b.min())}, {"max", vec_json(b.max())}}; }

@@ -18,6 +18,7 @@ const std::vector<Command>& commands() {
       {kVoidsSpec, run_voids},
       {kCapmapSpec, run_capmap},
       {kNbvSpec, run_nbv},
+      {kExploreSpec, run_explore},
       {kSimulateSpec, run_simulate},
   };
   return table;

@@ -33,6 +33,8 @@ int run_capmap(const Args& args);
 extern const CommandSpec kNbvSpec;
 int run_nbv(const Args& args);
 extern const CommandSpec kSimulateSpec;
+extern const CommandSpec kExploreSpec;
 int run_simulate(const Args& args);
+int run_explore(const Args& args);
 
 }  // namespace fvx::cli

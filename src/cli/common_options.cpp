@@ -1,6 +1,9 @@
 #include "common_options.hpp"
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
+#include "fvx/core/pose.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
 
 namespace fvx::cli {
 
@@ -80,6 +83,76 @@ Json depth_camera_json(const io::DepthCamera& camera) {
   return {{"intrinsics", intrinsics_json(camera.intrinsics)},
           {"depth_min_m", camera.depth_min_m},
           {"depth_max_m", camera.depth_max_m}};
+}
+
+std::vector<OptionSpec> arm_options() {
+  return {
+      {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)"},
+      {"base", 0, "x,y,z,roll,pitch,yaw", "T_world_base: where the capability map's base stands, "
+                                          "metres and degrees (default 0,0,0,0,0,0)"},
+      {"no-capmap", 0, nullptr, "a free-flying sensor: no reachability constraint"},
+      {"arm", 0, "URDF", "the arm the capability map was built for: each view then needs IK, "
+                         "which gives its joint configuration"},
+  };
+}
+
+void check_arm_options(const Args& args, const std::string& command) {
+  if (args.has("capmap") == args.has("no-capmap"))
+    throw UsageError(command + ": give --capmap FILE.fcm (with --base) for an arm, or --no-capmap for a free-flying sensor");
+  if (args.has("no-capmap") && (args.has("base") || args.has("arm")))
+    throw UsageError(command + ": --base and --arm need --capmap");
+}
+
+void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& out) {
+  check_arm_options(args, command);
+  out.T_world_base = args.has("base") ? parse_xyz_rpy_deg(args.get("base"), "--base") : Eigen::Isometry3d::Identity();
+  if (!args.has("capmap")) return;
+  out.capability_map = capmap::CapabilityMap::load(args.get("capmap"));
+  const capmap::CapabilityHeader& h = out.capability_map->header();
+  if (h.shard_count != 1)
+    throw UsageError(command + ": " + args.get("capmap") + " is shard " + std::to_string(h.shard_index) + " of " +
+                     std::to_string(h.shard_count) + "; merge the shards first (fvx capmap merge)");
+  if (args.has("arm")) {
+    out.arm = capmap::Arm::from_urdf(args.get("arm"), capmap::arm_config_of(h));
+    if (out.arm->urdf_hash() != h.urdf_hash)
+      throw Error(command + ": " + args.get("capmap") + " was built from another URDF than " + args.get("arm") +
+                  " (hash " + h.urdf_hash + " vs " + out.arm->urdf_hash() + "); rebuild it with fvx capmap build");
+  }
+  out.reach = nbv::Reach{&*out.capability_map, out.T_world_base, out.arm ? &*out.arm : nullptr, {}};
+  out.reach->ik.position_tolerance_m = h.position_tolerance_m;
+  out.reach->ik.angle_tolerance_rad = h.angle_tolerance_rad;
+}
+
+Json capmap_json(const Args& args, const ArmInputs& in) {
+  if (!in.capability_map) return nullptr;
+  const capmap::CapabilityHeader& h = in.capability_map->header();
+  return {{"file", args.get("capmap")}, {"base_link", h.base_link}, {"tip_link", h.tip_link},
+          {"urdf_hash", h.urdf_hash},   {"voxel_m", h.voxel_m},     {"directions", h.directions}};
+}
+
+Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what) {
+  const std::vector<double> v = parse_double_list(text, what + " (ex,ey,ez,tx,ty,tz)", 6);
+  const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
+  const Eigen::Vector3d z = target - eye;
+  if (z.norm() < 1e-9) throw UsageError(what + ": the eye and the target coincide");
+  const Eigen::Vector3d forward = z.normalized();
+  // Optical frame: x right, y down. Looking straight up or down, take world x as "up".
+  const Eigen::Vector3d up = std::abs(forward.z()) > 0.999 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d x = forward.cross(up).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() << x, forward.cross(x), forward;
+  T.translation() = eye;
+  return T;
+}
+
+sim::Scene scene_from(const std::string& source, const Args& args) {
+  const std::string prefix = "builtin:";
+  if (source.rfind(prefix, 0) == 0) {
+    sim::Scene s = sim::builtin_scene(source.substr(prefix.size()));
+    if (args.has("scene-info")) s.info = sim::read_scene_info(args.get("scene-info"));
+    return s;
+  }
+  return sim::load_scene(source, args.has("scene-info") ? args.get("scene-info") : "");
 }
 
 }  // namespace fvx::cli

@@ -4,7 +4,11 @@
 #include <optional>
 #include <vector>
 
+#include "fvx/capmap/arm.hpp"
+#include "fvx/capmap/capability_map.hpp"
 #include "fvx/io/intrinsics.hpp"
+#include "fvx/nbv/nbv.hpp"
+#include "fvx/sim/scene.hpp"
 #include "options.hpp"
 #include "report.hpp"
 
@@ -29,5 +33,30 @@ std::vector<OptionSpec> depth_camera_options();
 /// The sensor file (default Kinect v1), then the flags on top. UsageError when invalid.
 io::DepthCamera parse_depth_camera(const Args& args, const std::string& command);
 Json depth_camera_json(const io::DepthCamera& camera);
+
+/// --capmap, --base, --no-capmap, --arm: where the arm stands and what it reaches.
+std::vector<OptionSpec> arm_options();
+/// What arm_options() loaded; `reach` points into it, so keep it alive while using reach.
+struct ArmInputs {
+  std::optional<capmap::CapabilityMap> capability_map;
+  std::optional<capmap::Arm> arm;
+  std::optional<nbv::Reach> reach;  ///< empty with --no-capmap
+  Eigen::Isometry3d T_world_base = Eigen::Isometry3d::Identity();
+};
+/// UsageError unless exactly one of --capmap and --no-capmap is given (--base and --arm
+/// only with --capmap). Cheap: call it before reading other inputs.
+void check_arm_options(const Args& args, const std::string& command);
+/// check_arm_options(), then loads the map
+/// and the arm (FileError; Error when the URDF is not the one the map was built from).
+/// Call it before any long work.
+void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& out);
+Json capmap_json(const Args& args, const ArmInputs& in);
+
+/// "ex,ey,ez,tx,ty,tz": a sensor at eye E looking at target T, world z up (optical frame:
+/// x right, y down). UsageError naming `what`.
+Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);
+
+/// A scene argument: a mesh file (with its sidecar, or --scene-info) or builtin:NAME.
+sim::Scene scene_from(const std::string& source, const Args& args);
 
 }  // namespace fvx::cli

@@ -15,14 +15,15 @@ const char* to_string(Strategy s) {
     case Strategy::FrontierVoid: return "frontier-void";
     case Strategy::Exhaustive: return "exhaustive";
     case Strategy::Frontier: return "frontier";
+    case Strategy::Random: return "random";
   }
   return "?";
 }
 
 Strategy parse_strategy(const std::string& name) {
-  for (Strategy s : {Strategy::FrontierVoid, Strategy::Exhaustive, Strategy::Frontier})
+  for (Strategy s : {Strategy::FrontierVoid, Strategy::Exhaustive, Strategy::Frontier, Strategy::Random})
     if (name == to_string(s)) return s;
-  throw UsageError("--strategy '" + name + "': expected frontier-void, exhaustive or frontier");
+  throw UsageError("--strategy '" + name + "': expected frontier-void, exhaustive, frontier or random");
 }
 
 std::vector<std::string> Config::validate() const {
@@ -39,6 +40,7 @@ std::vector<std::string> Config::validate() const {
   if (!(refine_step_m > 0.0 && refine_step_m <= refine_max_m && refine_max_m <= 10.0))
     problems.push_back("refine_step_m and refine_max_m must satisfy 0 < step <= max <= 10 m");
   if (exhaustive_rolls < 1) problems.push_back("exhaustive_rolls must be >= 1");
+  if (random_tries < 1) problems.push_back("random_tries must be >= 1");
   if (top < 1) problems.push_back("top must be >= 1");
   return problems;
 }
@@ -46,20 +48,6 @@ std::vector<std::string> Config::validate() const {
 namespace detail {
 
 namespace {
-
-/// With an arm, turns the rotation's optical axis to the nearest direction the capability
-/// map reaches at p, if the aim stays inside the image (a 5-DOF arm reaches only an arc of
-/// directions, so most raw samples would be refused).
-Eigen::Matrix3d snap_to_reach(const Search& s, const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) {
-  if (!s.reach) return R;
-  const std::vector<Eigen::Vector3d> reachable = s.reach->capmap->reachable_directions(s.reach->T_world_base, p_world);
-  if (reachable.empty()) return R;
-  const Eigen::Vector3d axis = R.col(2);
-  const auto nearest = std::max_element(reachable.begin(), reachable.end(),
-                                        [&](const auto& l, const auto& r) { return l.dot(axis) < r.dot(axis); });
-  if (nearest->dot(axis) < std::cos(s.half_fov_rad)) return R;
-  return Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
-}
 
 /// The refinement step (Config::refine_poses): the best poses, stepped back along their
 /// optical axis, each step kept if it passes the position and orientation checks.
@@ -80,7 +68,7 @@ std::vector<Pose> stepped_back(const Search& s, const std::vector<Pose>& poses, 
       if (!s.keep_position(*key, s.grid.center_of(*key), checks)) continue;
       Pose pose;
       pose.T_world_sensor.translation() = s.grid.center_of(*key);
-      pose.T_world_sensor.linear() = snap_to_reach(s, pose.T_world_sensor.translation(), T.linear());
+      pose.T_world_sensor.linear() = s.snap_to_reach(pose.T_world_sensor.translation(), T.linear());
       pose.cell = poses[order[j]].cell;  // it serves the same frontier-voids
       pose.stepped_back_from = order[j];
       if (s.keep_orientation(pose, s.config.seed ^ (0xD1B54A32D192ED03ull * (pruning.refinement_steps + 1)), checks))
@@ -153,7 +141,7 @@ Result select_frontier_void(Search& s, Result result) {
          viewpoints::sample_orientations(p, targets, s.config.orientations_per_cell, jitter_rad, rng)) {
       if (poses.size() >= std::size_t(s.config.valid_poses)) break;
       Pose pose;
-      pose.T_world_sensor.linear() = snap_to_reach(s, p, R);
+      pose.T_world_sensor.linear() = s.snap_to_reach(p, R);
       pose.T_world_sensor.translation() = p;
       pose.cell = cell;
       if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
@@ -202,7 +190,7 @@ Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& anal
   // What the analysis already says: no view can help.
   const bool any_open_void = std::any_of(analysis.frontier_voids.begin(), analysis.frontier_voids.end(),
                                          [](const auto& fv) { return !fv.enclosed(); });
-  if (config.strategy != Strategy::Frontier && !any_open_void) {
+  if ((config.strategy == Strategy::FrontierVoid || config.strategy == Strategy::Exhaustive) && !any_open_void) {
     result.reason = analysis.void_cells.empty()
                         ? "no void cell in the search space: nothing is left to look into"
                         : "every void is enclosed: no frontier touches one, so no view can see into it";
@@ -220,6 +208,7 @@ Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& anal
     case Strategy::FrontierVoid: result = detail::select_frontier_void(search, std::move(result)); break;
     case Strategy::Exhaustive: result = detail::select_exhaustive(search, std::move(result)); break;
     case Strategy::Frontier: result = detail::select_frontier(search, std::move(result)); break;
+    case Strategy::Random: result = detail::select_random(search, std::move(result)); break;
   }
   result.timing.total_s = detail::seconds_since(start);
   return result;

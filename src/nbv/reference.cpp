@@ -173,7 +173,7 @@ Result select_frontier(Search& s, Result result) {
                                                                     s.config.orientations_per_cell, jitter_rad, rng)) {
       if (poses.size() >= std::size_t(s.config.valid_poses)) break;
       Pose pose;
-      pose.T_world_sensor.linear() = R;
+      pose.T_world_sensor.linear() = s.snap_to_reach(p, R);
       pose.T_world_sensor.translation() = p;
       pose.cell = cell;
       if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
@@ -193,6 +193,75 @@ Result select_frontier(Search& s, Result result) {
   if (result.views.empty())
     result.reason = candidates.empty() ? "pruning removed every cell in front of the largest frontier cluster"
                                        : "no valid pose sees the largest frontier cluster";
+  return result;
+}
+
+// A random reachable view: positions uniform over the cells that pass pruning (with an arm,
+// the capability map's voxels), a uniform roll, and a direction uniform over the reachable
+// ones (without an arm: over the sphere). Poses are drawn until one sees a void cell.
+Result select_random(Search& s, Result result) {
+  auto t0 = Clock::now();
+  Pruning& pruning = result.pruning;
+  std::vector<Eigen::Vector3d> positions;
+  if (s.reach) {
+    for (const auto& [voxel, bits] : s.reach->capmap->voxels()) {
+      ++pruning.utility_cells;
+      const Eigen::Vector3d p = s.reach->T_world_base * s.reach->capmap->center_of(voxel);
+      const auto key = s.map.key_of(p);
+      if (!key) {
+        ++pruning.not_free;
+        continue;
+      }
+      if (s.keep_position(*key, p, pruning)) positions.push_back(p);
+    }
+  } else {
+    for (std::size_t i = 0; i < s.grid.cell_count(); ++i) {
+      if (s.grid.state_at(i) != map::VoxelState::Free) continue;
+      ++pruning.utility_cells;
+      const map::VoxelKey k = s.grid.key(i);
+      if (s.keep_position(k, s.grid.center_of(k), pruning)) positions.push_back(s.grid.center_of(k));
+    }
+  }
+  pruning.candidate_cells = positions.size();
+  result.timing.pruning_s = seconds_since(t0);
+  if (positions.empty()) {
+    result.reason = "pruning removed every position (not free, outside the view bounds, too close to an obstacle "
+                    "or out of the arm's reach)";
+    return result;
+  }
+  t0 = Clock::now();
+  std::mt19937_64 rng(s.config.seed);
+  std::uniform_int_distribution<std::size_t> pick(0, positions.size() - 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Pose> poses;
+  std::vector<std::size_t> U;
+  for (int tries = 0; tries < s.config.random_tries; ++tries) {
+    const Eigen::Vector3d p = positions[pick(rng)];
+    Eigen::Vector3d d;
+    if (s.reach) {
+      const auto reachable = s.reach->capmap->reachable_directions(s.reach->T_world_base, p);
+      d = reachable[std::uniform_int_distribution<std::size_t>(0, reachable.size() - 1)(rng)];
+    } else {
+      const double z = 2.0 * unit(rng) - 1.0, phi = 2.0 * M_PI * unit(rng);
+      d = Eigen::Vector3d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+    }
+    Pose pose;
+    pose.T_world_sensor.linear() = viewpoints::look_along(d, M_PI * unit(rng));
+    pose.T_world_sensor.translation() = p;
+    pose.cell = s.grid.index(*s.map.key_of(p));
+    ++pruning.cells_tried;
+    if (!s.keep_orientation(pose, rng(), pruning)) continue;
+    ++pruning.valid_poses;
+    const std::size_t seen = s.score(*s.void_scorer, {pose}, result).front();
+    poses.push_back(std::move(pose));
+    U.push_back(seen);
+    if (seen > 0) break;
+  }
+  result.timing.scoring_s = seconds_since(t0);
+  result.views = s.rank(poses, U, nullptr, nullptr);
+  if (result.views.empty())
+    result.reason = "none of " + std::to_string(poses.size()) + " random reachable poses (" +
+                    std::to_string(s.config.random_tries) + " drawn) sees a void cell";
   return result;
 }
 

@@ -37,10 +37,16 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       known_m(known_box(map_in)),
       view_bounds_m(config_in.view_bounds_m ? *config_in.view_bounds_m : known_m),
       grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m)) {
+  // Only voids a frontier touches count: an enclosed void (inside a closed box or a solid)
+  // has no free cell beside it, so no view can see into it (paper §IV-B pairs voids with
+  // frontiers for this reason).
   void_label.assign(grid.cell_count(), -1);
   for (const auto& v : a.void_clusters)
-    for (const map::VoxelKey& k : v.cells)
-      if (grid.contains(k)) void_label[grid.index(k)] = v.id;
+    if (!a.frontier_voids[std::size_t(v.id)].enclosed())
+      for (const map::VoxelKey& k : v.cells)
+        if (grid.contains(k)) void_label[grid.index(k)] = v.id;
+  for (const map::VoxelKey& k : config.hidden_void_cells)
+    if (grid.contains(k)) void_label[grid.index(k)] = -1;
   occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied);
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
@@ -53,6 +59,17 @@ std::vector<std::uint8_t> Search::void_mask() const {
   std::vector<std::uint8_t> mask(void_label.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = void_label[i] >= 0;
   return mask;
+}
+
+Eigen::Matrix3d Search::snap_to_reach(const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) const {
+  if (!reach) return R;
+  const std::vector<Eigen::Vector3d> reachable = reach->capmap->reachable_directions(reach->T_world_base, p_world);
+  if (reachable.empty()) return R;
+  const Eigen::Vector3d axis = R.col(2);
+  const auto nearest = std::max_element(reachable.begin(), reachable.end(),
+                                        [&](const auto& l, const auto& r) { return l.dot(axis) < r.dot(axis); });
+  if (nearest->dot(axis) < std::cos(half_fov_rad)) return R;
+  return Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
 }
 
 bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const {
@@ -152,6 +169,8 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     if (pose.stepped_back_from != kNoCell) v.stepped_back_from = pose.stepped_back_from;
     v.joints_rad = pose.joints_rad;
     v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
+    for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));
+    std::sort(v.seen_void_cells.begin(), v.seen_void_cells.end());
     std::map<int, std::size_t> per_void;
     for (const std::size_t c : seen) ++per_void[void_label[c]];
     v.voids_seen.assign(per_void.begin(), per_void.end());

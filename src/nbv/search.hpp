@@ -53,6 +53,11 @@ struct Search {
 
   std::vector<std::uint8_t> void_mask() const;
 
+  /// With an arm, turns the rotation's optical axis to the nearest direction the capability
+  /// map reaches at p, if the aim stays inside the image (a 5-DOF arm reaches only an arc of
+  /// directions, so most raw samples would be refused). Without one: R unchanged.
+  Eigen::Matrix3d snap_to_reach(const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) const;
+
   const map::OccupancyMap& map;
   const frontier_voids::Analysis& a;
   const std::optional<Reach>& reach;
@@ -70,5 +75,6 @@ struct Search {
 Result select_frontier_void(Search& s, Result result);
 Result select_exhaustive(Search& s, Result result);
 Result select_frontier(Search& s, Result result);
+Result select_random(Search& s, Result result);
 
 }  // namespace fvx::nbv::detail

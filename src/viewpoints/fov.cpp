@@ -70,7 +70,11 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
         hit = i;
         return false;
       }
-      if (target_[i] && ws.stamp[i] != now) ws.ray_targets.push_back(i);
+      // The sensor measures nothing nearer than the minimum depth, so it cannot promise
+      // to reveal a target there (its cell centre's depth).
+      if (target_[i] && ws.stamp[i] != now &&
+          (depth_min_m_ <= 0.0 || (grid_.center_of(grid_.key(i)) - origin).dot(axis) >= depth_min_m_))
+        ws.ray_targets.push_back(i);
       return true;
     });
     // A surface nearer than the minimum depth (its cell centre's depth) gives no measurement.

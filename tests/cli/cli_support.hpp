@@ -2,8 +2,6 @@
 // Runs the fvx binary as a user would and captures exit status, stdout and stderr.
 #include <sys/wait.h>
 
-#include <fstream>
-
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -17,13 +15,6 @@ struct RunResult {
   int status = -1;
   std::string out, err;
 };
-
-inline std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// `fvx <arguments>` in `dir`; arguments are passed through the shell as written.
 inline RunResult run_fvx(const TempDir& dir, const std::string& arguments) {

@@ -16,10 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string source(const std::string& relative) {
-  const char* root = std::getenv("FVX_SOURCE_DIR");
-  return std::string(root ? root : ".") + "/" + relative;
-}
 
 /// The closed box scanned from six sides (as tests/unit/nbv), with the binary itself.
 void make_closed_box_map(const TempDir& dir) {

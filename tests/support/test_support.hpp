@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace fvx::test {
@@ -14,6 +16,20 @@ inline std::string real_data(const std::string& relative) {
   const char* root = std::getenv("FVX_REAL_DATA");
   if (!root || !*root) return {};
   return (std::filesystem::path(root) / relative).string();
+}
+
+/// The whole file, or "" when it cannot be read.
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A file of the repository (FVX_SOURCE_DIR, which ctest sets).
+inline std::string source(const std::string& relative) {
+  const char* root = std::getenv("FVX_SOURCE_DIR");
+  return std::string(root ? root : ".") + "/" + relative;
 }
 
 /// A fresh folder under the system temp dir, removed when the object dies.

@@ -24,9 +24,10 @@ enum class Strategy {
   FrontierVoid,  ///< the paper's method
   Exhaustive,    ///< reference: every reachable voxel and direction of the capability map, scored alike
   Frontier,      ///< reference: plain frontier-based — view the largest frontier cluster, no voids
+  Random,        ///< reference: a random reachable pose that sees at least one void cell
 };
 const char* to_string(Strategy s);
-/// "frontier-void", "exhaustive", "frontier"; UsageError otherwise.
+/// "frontier-void", "exhaustive", "frontier", "random"; UsageError otherwise.
 Strategy parse_strategy(const std::string& name);
 
 /// Where the arm stands and what it can reach. Without one, the sensor flies free.
@@ -59,9 +60,14 @@ struct Config {
   int refine_poses = 10;
   double refine_step_m = 0.1;
   double refine_max_m = 0.8;
+  /// Void cells that a view already taken looked at without revealing them (something the
+  /// map does not hold yet blocks them from there); they no longer count in U. Filled by the
+  /// exploration loop (pipeline::State), empty for a single search.
+  std::vector<map::VoxelKey> hidden_void_cells;
   /// The sensor stays in this box (metres); default: the box of the map's known cells.
   std::optional<Eigen::AlignedBox3d> view_bounds_m;
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
+  int random_tries = 1000;            ///< random: valid poses drawn at most, until one sees a void cell
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
   unsigned threads = 0;               ///< accumulation and scoring threads; 0: all cores (same result)
@@ -75,6 +81,7 @@ struct Config {
 struct View {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   std::size_t void_cells_seen = 0;       ///< U_i
+  std::vector<map::VoxelKey> seen_void_cells;  ///< the U_i cells, key order
   std::size_t frontier_cells_seen = 0;   ///< strategy frontier: the largest frontier cluster's cells seen
   double accumulated_utility_m3 = 0.0;   ///< util(c) at the viewpoint's cell (frontier: rays, not m³)
   /// Void clusters the view sees: (void id, cells seen), most cells first.

@@ -5,7 +5,10 @@
 /// grid pass free and unknown cells and stop at an occupied cell, at the depth limit or at
 /// the grid's edge (ARCHITECTURE.md §3). An unknown cell may hide a surface, so U_i is what
 /// the view can reveal at best. A ray that ends on an occupied cell nearer than the sensor's
-/// minimum depth measures nothing (a Kinect returns no depth there) and reveals nothing.
+/// minimum depth measures nothing (a Kinect returns no depth there) and reveals nothing, and
+/// target cells nearer than the minimum depth do not count: whether the ray measures
+/// anything beyond them is not known, and a surface hidden in the unknown within the minimum
+/// depth leaves the whole ray blank.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>

@@ -12,14 +12,12 @@
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/viewpoints/fov.hpp"
 #include "scan_scene.hpp"
+#include "test_support.hpp"
 
 namespace fvx::nbv {
 namespace {
 
-std::string source(const std::string& relative) {
-  const char* root = std::getenv("FVX_SOURCE_DIR");
-  return std::string(root ? root : ".") + "/" + relative;
-}
+using test::source;
 
 // The closed box (outer 0.52…1.02 × −0.27…0.23 × 0…0.40 m, walls 2 cm, a 16 cm opening in
 // the middle of the lid) scanned from six sides at 1.3 m, 2 cm cells: every wall is known,

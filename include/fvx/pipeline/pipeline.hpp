@@ -1,0 +1,74 @@
+#pragma once
+/// \file
+/// Stage `pipeline`: one call per recorded or simulated scan, in the order of the paper's
+/// §IV steps 1–7 — filter the scan, register it to the map's accumulated cloud, integrate it,
+/// update frontiers and voids from the change set, pair them, and search the next best view.
+/// `explore` and `replay` both run their loops through run_step().
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/frontiers/frontiers.hpp"
+#include "fvx/map/occupancy_map.hpp"
+#include "fvx/nbv/nbv.hpp"
+#include "fvx/registration/registration.hpp"
+#include "fvx/scan/scan.hpp"
+#include "fvx/voids/voids.hpp"
+
+namespace fvx::pipeline {
+
+struct Config {
+  double resolution_m = 0.025;                     ///< map cell edge, metres (the paper: 2.5 cm)
+  std::optional<Eigen::AlignedBox3d> bounds_m;     ///< search space S; default: the known cells' box
+  scan::FilterConfig filter;                       ///< depth limits and downsampling of each scan
+  /// Rays longer than this are cut and their end is not marked occupied, metres. Default:
+  /// the sensor's depth_max_m (taken from nbv.sensor when left infinite).
+  double max_range_m = std::numeric_limits<double>::infinity();
+  bool register_scans = false;                     ///< step 2; off when the poses are exact
+  registration::Config registration;
+  voids::ClusterConfig clusters;                   ///< Eq. 2 region growing
+  nbv::Config nbv;                                 ///< the search, its sensor model and strategy
+  std::vector<std::string> validate() const;
+};
+
+/// What persists between steps: the map, the incremental frontier and void sets, and the
+/// accumulated cloud that scans are registered to.
+struct State {
+  explicit State(double resolution_m) : map(resolution_m) {}
+  map::OccupancyMap map;
+  frontiers::FrontierSet frontier_set;
+  voids::VoidSet void_set;
+  std::vector<Eigen::Vector3f> registration_target;  ///< world frame, downsampled scan points
+  /// Void cells a scan was expected to reveal (taken at a chosen view) that stayed unknown:
+  /// hidden from there, they leave U (nbv::Config::hidden_void_cells). Key order.
+  std::vector<map::VoxelKey> hidden_void_cells;
+  int steps = 0;
+};
+
+struct Timing {
+  double registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
+};
+
+struct StepResult {
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();  ///< the pose integrated at
+  std::optional<registration::Result> registration;  ///< when attempted
+  scan::FilterStats filtered;
+  std::size_t changed_cells = 0;                     ///< cells whose state the scan changed
+  std::size_t expected_revealed = 0;                 ///< of the expected void cells, now known
+  std::size_t expected_hidden = 0;                   ///< … still unknown (added to State::hidden_void_cells)
+  frontier_voids::Analysis analysis;                 ///< after the scan
+  nbv::Result nbv;                                   ///< the next best views
+  Timing timing;
+};
+
+/// One step of §IV: `scan` (sensor-frame points and their pose prior) goes into `state`;
+/// returns the pose used, the analysis and the next best views. A scan with no point left
+/// after filtering (a sensor facing a surface nearer than its minimum depth) changes nothing.
+/// `expected_void_cells`: when the scan was taken at a view the search chose, the void cells
+/// it was expected to see (nbv::View::seen_void_cells); those it left unknown are hidden.
+StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
+                    const std::vector<map::VoxelKey>* expected_void_cells = nullptr);
+
+}  // namespace fvx::pipeline

@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// Scores a map against a scene's ground truth during an exploration: how much of the
+/// observable empty space of the search space is known, and whether the hidden target was
+/// seen.
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "fvx/map/occupancy_map.hpp"
+#include "fvx/sim/ground_truth.hpp"
+#include "fvx/sim/scene.hpp"
+
+namespace fvx::sim {
+
+class ExplorationScore {
+ public:
+  /// Occupied map cells inside the target box (above its lowest cell, the floor it stands
+  /// on) needed to count the target as seen.
+  static constexpr std::size_t kTargetCellsSeen = 5;
+
+  /// `gt` must cover the search space. Observable cells: cells of the search space that are
+  /// empty in the ground truth and connected through empty cells (6-connectivity, within
+  /// the ground truth's region) to the region's border — the air a sensor outside can reach
+  /// with a ray. A sealed cavity is not observable; neither is a cell that only a sensor
+  /// inside the search space could see, which no planner is denied here.
+  ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBox3d& search_space_m,
+                   std::optional<Eigen::AlignedBox3d> target_m);
+
+  /// Keeps only the observable cells that a sensor at one of `T_world_sensor` would reveal:
+  /// cells a ray (rays_sensor, scaled to depth 1) crosses before it hits a solid cell at a
+  /// depth within [depth_min_m, depth_max_m] — the Kinect's own rule, on the ground truth.
+  /// With the poses an arm can reach, this is what that arm can observe at all.
+  void restrict_to_views(const GroundTruth& gt, const std::vector<Eigen::Isometry3d>& T_world_sensor,
+                         const std::vector<Eigen::Vector3d>& rays_sensor, double depth_min_m, double depth_max_m,
+                         unsigned threads = 0);
+
+  std::size_t observable_cells() const { return observable_.size(); }
+  /// Observable cells the map knows (free or occupied), as a share of all observable cells.
+  double known_fraction(const map::OccupancyMap& map) const;
+  /// Occupied map cells in the target box above its lowest cell (0 without a target).
+  std::size_t target_cells_seen(const map::OccupancyMap& map) const;
+  bool target_seen(const map::OccupancyMap& map) const { return target_cells_seen(map) >= kTargetCellsSeen; }
+
+ private:
+  std::vector<Eigen::Vector3d> observable_;  ///< cell centres, world frame
+  std::optional<Eigen::AlignedBox3d> target_m_;
+};
+
+}  // namespace fvx::sim

@@ -1,0 +1,406 @@
+// fvx explore — the closed loop of §IV on a simulated scene with a virtual Kinect: scan,
+// integrate, frontiers and voids, next best view, move; a session directory and the per-view
+// table with ground truth.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "analysis_output.hpp"
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
+#include "fvx/core/pose.hpp"
+#include "fvx/io/cloud_file.hpp"
+#include "fvx/session/session.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/sim/exploration_score.hpp"
+#include "fvx/viewpoints/fov.hpp"
+#include "nbv_output.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kExploreSpec = {
+    "explore",
+    "SCENE.ply|builtin:NAME (--capmap ARM.fcm [--base POSE] [--arm URDF] | --no-capmap) -o SESSION/ [options]",
+    "the closed loop on a simulated scene: scan, integrate, voids, next best view, move; per-view table",
+    options({{
+                 {"output", 'o', "DIR", "the session directory to create (must not exist or be empty)"},
+             },
+             arm_options(),
+             {
+                 {"planner", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive"},
+                 {"start", 0, "ex,ey,ez,tx,ty,tz", "first view: sensor at eye E looking at T, metres (default: "
+                                                   "0.95 m above the base, 0.15 m behind it, looking at the "
+                                                   "search space's centre)"},
+                 {"max-views", 0, "N", "stop after N scans (default 15)"},
+                 {"pose-noise", 0, "M,DEG", "recorded poses after the first are off by Gaussian noise of sigma M "
+                                            "metres and DEG degrees per axis; turns registration on"},
+                 {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)"},
+                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)"},
+                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)"},
+                 {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
+                                                         "known cells' box)"},
+                 {"scene-info", 0, "FILE", "ground-truth sidecar JSON (default: SCENE with .json)"},
+                 {"noise", 0, "MODEL", "depth noise of the virtual Kinect: none (default) or kinect"},
+                 {"seed", 0, "N", "seed of the planner, the depth noise and the pose noise (default 1)"},
+                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
+                 {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)"},
+             },
+             depth_camera_options(),
+             {
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
+                 {"help", 'h', nullptr, "show this help"},
+             }})};
+
+namespace {
+
+enum class Format { Markdown, Csv, Json };
+
+Format parse_format(const Args& args) {
+  const std::string f = args.has("format") ? args.get("format") : "markdown";
+  if (f == "markdown") return Format::Markdown;
+  if (f == "csv") return Format::Csv;
+  if (f == "json") return Format::Json;
+  throw UsageError("--format '" + f + "': expected markdown, csv or json");
+}
+
+/// One row of the per-view table: the paper's columns, then ground truth.
+struct Row {
+  int view = 0;
+  double scan_s = 0, registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
+  std::size_t void_cells = 0;
+  std::size_t predicted = 0;       ///< U of the chosen next view
+  double utility_dm3 = 0;          ///< U · R³ in dm³
+  double known_fraction = 0;       ///< of the observable empty space of S
+  std::size_t target_cells = 0;
+  bool target_seen = false;
+  std::optional<std::size_t> revealed;  ///< of this view's void cells, known after the next scan
+  std::optional<double> registration_fitness_m;
+};
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+std::vector<std::string> cells(const Row& r) {
+  return {std::to_string(r.view + 1),
+          fixed(r.integration_s, 3),
+          fixed(r.search_s, 3),
+          std::to_string(r.void_cells),
+          fixed(r.utility_dm3, 2),
+          fixed(100.0 * r.known_fraction, 1),
+          r.target_seen ? "yes" : "no",
+          std::to_string(r.predicted),
+          r.revealed ? std::to_string(*r.revealed) : "-"};
+}
+
+const std::vector<std::string> kHeader = {"view",      "integration_s", "search_s",    "void_cells", "utility_dm3",
+                                          "known_pct", "target_seen",   "predicted_U", "revealed"};
+
+void print_table(const std::vector<Row>& rows, Format format, std::ostream& out) {
+  if (format == Format::Csv) {
+    for (std::size_t i = 0; i < kHeader.size(); ++i) out << (i ? "," : "") << kHeader[i];
+    out << "\n";
+    for (const Row& r : rows) {
+      const auto c = cells(r);
+      for (std::size_t i = 0; i < c.size(); ++i) out << (i ? "," : "") << c[i];
+      out << "\n";
+    }
+    return;
+  }
+  out << "|";
+  for (const auto& h : kHeader) out << " " << h << " |";
+  out << "\n|";
+  for (std::size_t i = 0; i < kHeader.size(); ++i) out << "---|";
+  out << "\n";
+  for (const Row& r : rows) {
+    out << "|";
+    for (const auto& c : cells(r)) out << " " << c << " |";
+    out << "\n";
+  }
+}
+
+Json row_json(const Row& r) {
+  Json j = {{"view", r.view + 1},
+            {"timing_s", {{"render", r.scan_s}, {"registration", r.registration_s}, {"integration", r.integration_s},
+                          {"frontiers_voids", r.frontiers_voids_s}, {"search", r.search_s}}},
+            {"void_cells", r.void_cells},
+            {"predicted_void_cells", r.predicted},
+            {"utility_dm3", r.utility_dm3},
+            {"known_fraction", r.known_fraction},
+            {"target_cells_seen", r.target_cells},
+            {"target_seen", r.target_seen},
+            {"revealed_void_cells", r.revealed ? Json(*r.revealed) : Json(nullptr)},
+            {"registration_fitness_m", r.registration_fitness_m ? Json(*r.registration_fitness_m) : Json(nullptr)}};
+  return j;
+}
+
+/// The default first view with an arm: of the capability map's reachable poses outside the
+/// search space, the one whose direction points most nearly at `target` (ties: the higher).
+Eigen::Isometry3d start_facing(const nbv::Reach& reach, const Eigen::Vector3d& target, const Eigen::AlignedBox3d& S) {
+  const capmap::CapabilityMap& cm = *reach.capmap;
+  double best = -2.0, best_z = -1e9;
+  Eigen::Vector3d eye = Eigen::Vector3d::Zero(), dir = Eigen::Vector3d::UnitZ();
+  for (const auto& [voxel, bits] : cm.voxels()) {
+    const Eigen::Vector3d p = reach.T_world_base * cm.center_of(voxel);
+    if (S.contains(p) || (target - p).norm() < 0.3) continue;
+    const Eigen::Vector3d want = (target - p).normalized();
+    for (const int d : cm.reachable_directions(cm.center_of(voxel))) {
+      const Eigen::Vector3d d_world = reach.T_world_base.linear() * cm.directions()[d];
+      const double c = d_world.dot(want);
+      if (c > best + 1e-9 || (c > best - 1e-9 && p.z() > best_z)) {
+        best = c;
+        best_z = p.z();
+        eye = p;
+        dir = d_world;
+      }
+    }
+  }
+  if (best < -1.0) throw Error("fvx explore: the capability map reaches no pose outside the search space; give --start");
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = eye;
+  T.linear() = viewpoints::look_along(dir, 0.0);
+  return T;
+}
+
+std::string view_name(int view, const char* ext) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "view%03d%s", view, ext);
+  return buf;
+}
+
+}  // namespace
+
+int run_explore(const Args& args) {
+  if (args.positional.size() != 1)
+    throw UsageError("fvx explore: give one scene (a mesh file or builtin:NAME), got " +
+                     std::to_string(args.positional.size()));
+  if (!args.has("output")) throw UsageError("fvx explore: -o/--output SESSION_DIR is required");
+  check_arm_options(args, "fvx explore");
+  const Format format = parse_format(args);
+  const std::filesystem::path dir = args.get("output");
+  if (std::filesystem::exists(dir) && !(std::filesystem::is_directory(dir) && std::filesystem::is_empty(dir)))
+    throw UsageError("fvx explore: -o " + dir.string() + " exists and is not an empty folder; nothing is overwritten");
+
+  session::ExploreConfig config;
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  nc.strategy = args.has("planner") ? nbv::parse_strategy(args.get("planner")) : nbv::Strategy::FrontierVoid;
+  nc.sensor = parse_depth_camera(args, "explore");
+  nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  nc.view_bounds_m = parse_bounds(args, "view-bounds");
+  pc.clusters.seed = nc.seed;
+  pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  pc.filter.depth_min_m = nc.sensor.depth_min_m;
+  pc.filter.depth_max_m = nc.sensor.depth_max_m;
+  config.seed = nc.seed;
+  config.max_views = int(args.integer("max-views", config.max_views, 1, 10000));
+  if (args.has("pose-noise")) {
+    const std::vector<double> v = parse_double_list(args.get("pose-noise"), "--pose-noise (M,DEG)", 2);
+    if (!(v[0] >= 0 && v[0] <= 1.0) || !(v[1] >= 0 && v[1] <= 45.0))
+      throw UsageError("--pose-noise " + args.get("pose-noise") + ": expected 0 <= M <= 1 metres, 0 <= DEG <= 45");
+    config.pose_noise_m = v[0];
+    config.pose_noise_deg = v[1];
+  }
+  pc.register_scans = args.has("register") || config.pose_noise_m > 0 || config.pose_noise_deg > 0;
+  if (nc.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
+    throw UsageError("fvx explore: --planner exhaustive enumerates a capability map: give --capmap");
+  sim::SensorConfig render_config;
+  render_config.intrinsics = nc.sensor.intrinsics;
+  render_config.depth_min_m = nc.sensor.depth_min_m;
+  render_config.depth_max_m = nc.sensor.depth_max_m;
+  render_config.seed = nc.seed;
+  render_config.threads = nc.threads;
+  if (args.has("noise")) {
+    const std::string model = args.get("noise");
+    if (model == "kinect") render_config.noise_m_per_m2 = 1.4e-3;
+    else if (model != "none") throw UsageError("--noise: '" + model + "' is not a noise model; use none or kinect");
+  }
+
+  // Inputs: the scene, the arm; then the start pose against both.
+  const sim::Scene scene = scene_from(args.positional[0], args);
+  ArmInputs arm_inputs;
+  load_arm_inputs(args, "fvx explore", arm_inputs);
+  pc.bounds_m = parse_bounds(args);
+  if (!pc.bounds_m) pc.bounds_m = scene.info.search_space;
+  if (!pc.bounds_m)
+    throw UsageError("fvx explore: the scene has no search space (sidecar search_space); give --bounds");
+  const Eigen::AlignedBox3d S = *pc.bounds_m;
+  if (args.has("start")) {
+    config.T_world_sensor_start = parse_look_at(args.get("start"), "--start");
+  } else if (arm_inputs.reach) {
+    config.T_world_sensor_start = start_facing(*arm_inputs.reach, S.center() - Eigen::Vector3d(0, 0, 0.1), S);
+  } else {
+    const Eigen::Vector3d eye = arm_inputs.T_world_base * Eigen::Vector3d(-0.15, 0.0, 0.95);
+    const Eigen::Vector3d target = S.center() - Eigen::Vector3d(0, 0, 0.1);
+    std::ostringstream text;
+    text.precision(17);
+    text << eye.x() << "," << eye.y() << "," << eye.z() << "," << target.x() << "," << target.y() << "," << target.z();
+    config.T_world_sensor_start = parse_look_at(text.str(), "the default start");
+  }
+  {
+    const auto problems = config.validate();
+    if (!problems.empty()) throw UsageError("fvx explore: " + problems.front());
+  }
+  const auto caster = sim::make_ray_caster(scene.mesh);
+  const double R = pc.resolution_m;
+  // Ground truth over S grown by a margin, so the air around the containers reaches the border.
+  const Eigen::AlignedBox3d gt_region(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25));
+  {
+    const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
+    const Eigen::Vector3d centre = ((eye.array() * (1.0 / R)).floor() + 0.5).matrix() * R;  // as cell_of()
+    const Eigen::Vector3d quarter = Eigen::Vector3d::Constant(R / 4);
+    const sim::GroundTruth at_start(scene.mesh, *caster, R, Eigen::AlignedBox3d(centre - quarter, centre + quarter));
+    if (at_start.solid(at_start.cell_of(eye)))
+      throw Error("fvx explore: the start pose (" + fixed(eye.x(), 3) + ", " + fixed(eye.y(), 3) + ", " +
+                  fixed(eye.z(), 3) + ") is inside an obstacle of the scene");
+  }
+  session::start_configuration(arm_inputs.reach, config.T_world_sensor_start, config.seed);  // throws if unreachable
+  Progress progress(args.has("progress"));
+  progress.update("fvx explore: ground truth of the search space");
+  const sim::GroundTruth gt(scene.mesh, *caster, R, gt_region);
+  std::optional<Eigen::AlignedBox3d> target;
+  if (scene.info.target) target = scene.info.target->box;
+  sim::ExplorationScore score(gt, S, target);
+  if (arm_inputs.reach) {
+    // Observable = what some pose of the arm's capability map would reveal (coarse rays:
+    // the union over thousands of poses fills their gaps).
+    progress.update("fvx explore: the space the arm can observe at all (ground truth)");
+    const nbv::Reach& reach = *arm_inputs.reach;
+    const capmap::CapabilityMap& cm = *reach.capmap;
+    std::vector<Eigen::Isometry3d> poses;
+    for (const auto& [voxel, bits] : cm.voxels()) {
+      const Eigen::Vector3d p = reach.T_world_base * cm.center_of(voxel);
+      const Eigen::Vector3i cell = gt.cell_of(p);
+      if (gt.contains(cell) && gt.solid(cell)) continue;
+      for (const int d : cm.reachable_directions(cm.center_of(voxel))) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() = p;
+        T.linear() = viewpoints::look_along(reach.T_world_base.linear() * cm.directions()[d], 0.0);
+        poses.push_back(T);
+      }
+    }
+    score.restrict_to_views(gt, poses, viewpoints::ray_fan(nc.sensor.intrinsics, 20, 15), nc.sensor.depth_min_m,
+                            nc.sensor.depth_max_m, nc.threads);
+  }
+
+  // The session directory: created only now that every input is good.
+  std::filesystem::create_directories(dir / "scans");
+  std::filesystem::create_directories(dir / "maps");
+  std::filesystem::create_directories(dir / "reports");
+  session::Manifest manifest;
+  manifest.created_by = std::string("fvx explore ") + version();
+  manifest.scene = args.positional[0];
+  manifest.resolution_m = R;
+  manifest.search_space_m = S;
+  manifest.view_bounds_m = nc.view_bounds_m;
+  if (arm_inputs.reach) {
+    manifest.T_world_base = arm_inputs.T_world_base;
+    manifest.capmap = args.get("capmap");
+    manifest.capmap_urdf_hash = arm_inputs.capability_map->header().urdf_hash;
+  }
+  if (args.has("arm")) manifest.arm = args.get("arm");
+  manifest.planner = nbv::to_string(nc.strategy);
+  manifest.seed = config.seed;
+  manifest.pose_noise_m = config.pose_noise_m;
+  manifest.pose_noise_deg = config.pose_noise_deg;
+  manifest.registration = pc.register_scans;
+  session::write_depth_camera((dir / manifest.sensor).string(), nc.sensor);
+  session::write_manifest(dir.string(), manifest);
+
+  const std::vector<std::string> joint_names =
+      arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
+  const session::Sensor kinect = [&](const Eigen::Isometry3d& T_world_sensor, int view) {
+    const sim::Frame frame = sim::render(*caster, T_world_sensor, render_config, std::uint64_t(view));
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(frame.points_sensor.size());
+    for (const auto& p : frame.points_sensor) points.push_back(p.cast<double>());
+    return points;
+  };
+  std::vector<Row> rows;
+  const session::ExploreResult result = session::explore(
+      kinect, arm_inputs.reach, config, [&](const session::ViewRecord& v, const pipeline::State& state) {
+        const pipeline::StepResult& step = v.step;
+        Row row;
+        row.view = v.view;
+        row.scan_s = v.scan_s;
+        row.registration_s = step.timing.registration_s;
+        row.integration_s = step.timing.integration_s;
+        row.frontiers_voids_s = step.timing.frontiers_voids_s;
+        row.search_s = step.timing.search_s;
+        row.void_cells = step.analysis.void_cells.size();
+        row.predicted = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
+        row.utility_dm3 = frontier_voids::to_dm3(double(row.predicted) * R * R * R);
+        row.known_fraction = score.known_fraction(state.map);
+        row.target_cells = score.target_cells_seen(state.map);
+        row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
+        if (step.registration) row.registration_fitness_m = step.registration->fitness_rmse_m;
+        if (!rows.empty()) rows.back().revealed = v.revealed_void_cells;
+        rows.push_back(row);
+
+        // The view's files, then the manifest that lists them.
+        session::ManifestView mv;
+        mv.view = v.view;
+        mv.scan = "scans/" + view_name(v.view, ".pcd");
+        mv.map = "maps/" + view_name(v.view, ".ot");
+        mv.report = "reports/" + view_name(v.view, ".json");
+        mv.T_world_sensor_prior = v.T_world_sensor_prior;
+        mv.T_world_sensor_true = v.T_world_sensor_true;
+        mv.joints_rad = v.joints_rad;
+        mv.stamp_s = double(v.view);
+        std::vector<Eigen::Vector3f> organised;
+        organised.reserve(v.points_sensor.size());
+        for (const auto& p : v.points_sensor) organised.push_back(p.cast<float>());
+        io::write_pcd((dir / mv.scan).string(), organised, v.T_world_sensor_prior, nc.sensor.intrinsics.width,
+                      nc.sensor.intrinsics.height);
+        state.map.save((dir / mv.map).string());
+        Json report = new_report("explore");
+        report["inputs"] = {{"scene", args.positional[0]}, {"view", v.view}, {"scan", mv.scan}, {"map", mv.map}};
+        Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
+        results["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
+        results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
+        results["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
+        results["row"] = row_json(row);
+        report["results"] = results;
+        report["warnings"] = step.analysis.warnings;
+        write_report(report, (dir / mv.report).string());
+        manifest.views.push_back(mv);
+        session::write_manifest(dir.string(), manifest);
+        progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.void_cells) +
+                        " void cells, next view sees " + std::to_string(row.predicted) + ", " +
+                        fixed(100.0 * row.known_fraction, 1) + " % known" + (row.target_seen ? ", target seen" : ""));
+      });
+  progress.finish();
+
+  if (format == Format::Json) {
+    Json report = new_report("explore");
+    report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"max_views", config.max_views},
+                        {"resolution_m", R}, {"bounds_m", bounds_json(S)},
+                        {"pose_noise", {{"sigma_m", config.pose_noise_m}, {"sigma_deg", config.pose_noise_deg}}},
+                        {"registration", pc.register_scans}, {"seed", config.seed},
+                        {"sensor", depth_camera_json(nc.sensor)}};
+    report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
+                        {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
+    Json jrows = Json::array();
+    for (const Row& r : rows) jrows.push_back(row_json(r));
+    report["results"] = {{"session", dir.string()}, {"views", result.views}, {"end", result.end},
+                         {"utility_exhausted", result.utility_exhausted},
+                         {"observable_cells", score.observable_cells()}, {"rows", jrows}};
+    report["warnings"] = Json::array();
+    write_report(report, "");
+  } else {
+    print_table(rows, format, std::cout);
+    if (format == Format::Markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
+  }
+  std::cerr << "fvx explore: " << result.end << "; session in " << dir.string() << "\n";
+  return 0;
+}
+
+}  // namespace fvx::cli

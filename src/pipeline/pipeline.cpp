@@ -1,0 +1,98 @@
+#include "fvx/pipeline/pipeline.hpp"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "fvx/core/error.hpp"
+
+namespace fvx::pipeline {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+std::vector<std::string> Config::validate() const {
+  std::vector<std::string> problems;
+  if (!(resolution_m > 0.0 && resolution_m <= 10.0)) problems.push_back("resolution_m must be in (0, 10] m");
+  if (bounds_m && (bounds_m->isEmpty() || !bounds_m->min().allFinite() || !bounds_m->max().allFinite()))
+    problems.push_back("bounds_m must be a finite, non-empty box");
+  if (!(max_range_m > 0.0)) problems.push_back("max_range_m must be > 0");
+  for (const auto& p : filter.validate()) problems.push_back("filter: " + p);
+  if (register_scans)
+    for (const auto& p : registration.validate()) problems.push_back("registration: " + p);
+  for (const auto& p : nbv.validate()) problems.push_back("nbv: " + p);
+  return problems;
+}
+
+StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
+                    const std::vector<map::VoxelKey>* expected_void_cells) {
+  const auto problems = config.validate();
+  if (!problems.empty()) throw UsageError("pipeline: " + problems.front());
+  StepResult r;
+
+  // Step 1: the scan, without NaNs, within the sensor's depths.
+  // A scan may measure nothing (every surface nearer than the minimum depth): the map stays.
+  r.filtered = scan::filter(scan, config.filter);
+
+  // Step 2: registration to the points integrated so far.
+  auto t0 = Clock::now();
+  if (config.register_scans && !state.registration_target.empty() && r.filtered.kept > 0) {
+    r.registration = registration::align(scan.points_sensor, scan.T_world_sensor, state.registration_target,
+                                         config.registration);
+    if (r.registration->converged) scan.T_world_sensor = r.registration->T_world_sensor;
+  }
+  r.T_world_sensor = scan.T_world_sensor;
+  r.timing.registration_s = seconds_since(t0);
+
+  // Step 3: integration; the change set drives the incremental updates.
+  t0 = Clock::now();
+  const double range_m = std::isfinite(config.max_range_m) ? config.max_range_m : config.nbv.sensor.depth_max_m;
+  const map::Integration integration =
+      state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m);
+  r.changed_cells = integration.changes.size();
+  if (config.register_scans) {
+    // Half the registration voxel keeps surfaces where they are (see fvx integrate).
+    const auto sample = config.registration.voxel_m > 0
+                            ? scan::voxel_downsample(scan.points_sensor, config.registration.voxel_m / 2)
+                            : scan.points_sensor;
+    for (const auto& p : sample) state.registration_target.push_back((scan.T_world_sensor * p).cast<float>());
+  }
+  if (expected_void_cells) {
+    std::vector<map::VoxelKey> hidden;
+    for (const map::VoxelKey& k : *expected_void_cells)
+      if (state.map.state(k) == map::VoxelState::Unknown) hidden.push_back(k);
+    r.expected_hidden = hidden.size();
+    r.expected_revealed = expected_void_cells->size() - hidden.size();
+    std::vector<map::VoxelKey> merged;
+    std::set_union(state.hidden_void_cells.begin(), state.hidden_void_cells.end(), hidden.begin(), hidden.end(),
+                   std::back_inserter(merged));
+    state.hidden_void_cells = std::move(merged);
+  }
+  r.timing.integration_s = seconds_since(t0);
+
+  // §IV-A, §IV-B: frontiers and voids from the change set, then the frontier-voids.
+  t0 = Clock::now();
+  if (state.steps == 0) {
+    state.frontier_set.rebuild(state.map);
+    state.void_set.rebuild(state.map);
+  } else {
+    state.frontier_set.update(state.map, integration.changes);
+    state.void_set.update(state.map, integration.changes);
+  }
+  r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m, config.clusters);
+  r.timing.frontiers_voids_s = seconds_since(t0);
+
+  // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).
+  t0 = Clock::now();
+  nbv::Config search = config.nbv;
+  search.hidden_void_cells = state.hidden_void_cells;
+  r.nbv = nbv::select(state.map, r.analysis, reach, search);
+  r.timing.search_s = seconds_since(t0);
+  ++state.steps;
+  return r;
+}
+
+}  // namespace fvx::pipeline

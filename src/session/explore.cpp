@@ -1,0 +1,145 @@
+// The closed loop of the paper's §IV (steps 1–7) as its experiments (§V) ran it: scan,
+// register, integrate, frontiers and voids, next best view, move there, until no reachable
+// view sees a void.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "fvx/core/error.hpp"
+#include "fvx/session/session.hpp"
+
+namespace fvx::session {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A ranked view this close to a view already taken repeats it.
+constexpr double kSamePosition_m = 0.05;
+constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
+
+/// The prior a robot would record: the true pose off by Gaussian noise.
+Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T_true, double sigma_m, double sigma_deg, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::Vector3d dt(normal(rng) * sigma_m, normal(rng) * sigma_m, normal(rng) * sigma_m);
+  const Eigen::Vector3d rotation_vector =
+      Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * (sigma_deg * M_PI / 180.0);
+  Eigen::Isometry3d T = T_true;
+  T.translation() += dt;
+  if (rotation_vector.norm() > 0)
+    T.linear() = Eigen::AngleAxisd(rotation_vector.norm(), rotation_vector.normalized()).toRotationMatrix() * T.linear();
+  return T;
+}
+
+/// Where the arm puts the sensor for a view: FK of its IK configuration (the executed
+/// motion, within the capability map's tolerances of the chosen pose); free-flying: the pose.
+Eigen::Isometry3d executed(const nbv::View& view, const std::optional<nbv::Reach>& reach) {
+  if (!reach || !reach->arm || view.joints_rad.size() == 0) return view.T_world_sensor;
+  const Eigen::Isometry3d T_world_sensor = reach->T_world_base * reach->arm->fk(view.joints_rad);
+  return T_world_sensor;
+}
+
+}  // namespace
+
+std::pair<Eigen::Isometry3d, Eigen::VectorXd> start_configuration(const std::optional<nbv::Reach>& reach,
+                                                                   const Eigen::Isometry3d& T_world_sensor,
+                                                                   std::uint64_t seed) {
+  if (!reach) return {T_world_sensor, Eigen::VectorXd()};
+  const Eigen::Vector3d p = T_world_sensor.translation(), d = T_world_sensor.linear().col(2);
+  if (!reach->capmap->reachable(reach->T_world_base, p, d)) {
+    char where[96];
+    std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
+    throw Error(std::string("the start pose ") + where +
+                " is out of the arm's reach: its capability map has no bit there for that direction");
+  }
+  if (!reach->arm) return {T_world_sensor, Eigen::VectorXd()};
+  std::mt19937_64 rng(seed);
+  const Eigen::Isometry3d T_base_world = reach->T_world_base.inverse();
+  const capmap::IkResult ik =
+      capmap::solve_viewing_ik(*reach->arm, T_base_world * p, T_base_world.linear() * d, reach->ik, rng);
+  if (!ik.reached) throw Error("the start pose is out of the arm's reach: IK finds no configuration there");
+  return {reach->T_world_base * reach->arm->fk(ik.q), ik.q};
+}
+
+std::vector<std::string> ExploreConfig::validate() const {
+  std::vector<std::string> problems = pipeline.validate();
+  if (max_views < 1) problems.push_back("max_views must be >= 1");
+  if (!(pose_noise_m >= 0.0 && pose_noise_m <= 1.0)) problems.push_back("pose_noise_m must be in [0, 1] m");
+  if (!(pose_noise_deg >= 0.0 && pose_noise_deg <= 45.0)) problems.push_back("pose_noise_deg must be in [0, 45] degrees");
+  if (!T_world_sensor_start.matrix().allFinite()) problems.push_back("T_world_sensor_start must be finite");
+  return problems;
+}
+
+ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& reach, const ExploreConfig& config,
+                      const std::function<void(const ViewRecord&, const pipeline::State&)>& on_view) {
+  const auto problems = config.validate();
+  if (!problems.empty()) throw UsageError("explore: " + problems.front());
+
+  const auto [T_start, start_joints] = start_configuration(reach, config.T_world_sensor_start, config.seed);
+  Eigen::Isometry3d T_true = T_start;
+  Eigen::VectorXd joints = start_joints;
+
+  pipeline::State state(config.pipeline.resolution_m);
+  std::mt19937_64 noise_rng(config.seed ^ 0x6A09E667F3BCC909ull);
+  std::vector<map::VoxelKey> previous_voids;
+  std::size_t previous_prediction = 0;
+  std::vector<Eigen::Isometry3d> visited;  // true poses of the views taken
+  std::vector<map::VoxelKey> expected;     // void cells the view about to be taken should reveal
+  ExploreResult result;
+  for (int view = 0; view < config.max_views; ++view) {
+    ViewRecord record;
+    record.view = view;
+    record.T_world_sensor_true = T_true;
+    record.joints_rad = joints;
+    record.T_world_sensor_prior = view > 0 && (config.pose_noise_m > 0 || config.pose_noise_deg > 0)
+                                      ? perturbed(T_true, config.pose_noise_m, config.pose_noise_deg, noise_rng)
+                                      : T_true;
+    const auto t0 = Clock::now();
+    record.points_sensor = sensor(T_true, view);
+    record.scan_s = std::chrono::duration<double>(Clock::now() - t0).count();
+
+    scan::Scan scan;
+    scan.source = "view " + std::to_string(view);
+    scan.points_sensor = record.points_sensor;
+    scan.T_world_sensor = record.T_world_sensor_prior;
+    // Each view's search draws its own random numbers (the same for the same seed).
+    pipeline::Config step_config = config.pipeline;
+    step_config.nbv.seed = config.pipeline.nbv.seed + std::uint64_t(view);
+    record.step = pipeline::run_step(state, std::move(scan), reach, step_config, view > 0 ? &expected : nullptr);
+
+    record.previous_prediction = previous_prediction;
+    for (const map::VoxelKey& k : previous_voids) record.revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
+    previous_voids = record.step.analysis.void_cells;
+    const nbv::Result& next = record.step.nbv;
+    visited.push_back(record.T_world_sensor_true);
+    // The best ranked view not taken yet: one already taken revealed what it could.
+    const auto fresh = std::find_if(next.views.begin(), next.views.end(), [&](const nbv::View& v) {
+      return std::none_of(visited.begin(), visited.end(), [&](const Eigen::Isometry3d& T) {
+        return (T.translation() - v.T_world_sensor.translation()).norm() < kSamePosition_m &&
+               T.linear().col(2).dot(v.T_world_sensor.linear().col(2)) > std::cos(kSameDirection_rad);
+      });
+    });
+    if (fresh != next.views.end()) record.chosen = std::size_t(fresh - next.views.begin());
+    on_view(record, state);
+    result.views = view + 1;
+    if (next.views.empty()) {
+      result.end = "utility 0: " + next.reason;
+      result.utility_exhausted = true;
+      return result;
+    }
+    if (fresh == next.views.end()) {
+      result.end = "every ranked view repeats one already taken";
+      return result;
+    }
+    T_true = executed(*fresh, reach);
+    joints = fresh->joints_rad;
+    expected = fresh->seen_void_cells;
+    previous_prediction = fresh->void_cells_seen;
+  }
+  result.end = "the view limit (" + std::to_string(config.max_views) + ") was reached";
+  return result;
+}
+
+}  // namespace fvx::session

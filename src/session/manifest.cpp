@@ -1,0 +1,164 @@
+// The session directory's manifest (man/fvx-session.5).
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
+#include "fvx/session/session.hpp"
+
+namespace fvx::session {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json pose_json(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.rotation());
+  return {{"position_m", {T.translation().x(), T.translation().y(), T.translation().z()}},
+          {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
+}
+
+Json box_json(const std::optional<Eigen::AlignedBox3d>& b) {
+  if (!b) return nullptr;
+  return {{"min", {b->min().x(), b->min().y(), b->min().z()}}, {"max", {b->max().x(), b->max().y(), b->max().z()}}};
+}
+
+/// Reading: every problem names the manifest and the key.
+struct Reader {
+  std::string file;
+  [[noreturn]] void fail(const std::string& what) const { throw FileError(file, what); }
+  const Json& at(const Json& j, const char* key) const {
+    if (!j.is_object() || !j.contains(key)) fail("missing key '" + std::string(key) + "'");
+    return j.at(key);
+  }
+  double number(const Json& j, const char* key) const {
+    const Json& v = at(j, key);
+    if (!v.is_number()) fail("'" + std::string(key) + "' must be a number");
+    return v.get<double>();
+  }
+  std::string text(const Json& j, const char* key) const {
+    const Json& v = at(j, key);
+    if (!v.is_string()) fail("'" + std::string(key) + "' must be a string");
+    return v.get<std::string>();
+  }
+  Eigen::Vector3d vec3(const Json& v, const std::string& what) const {
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      fail("'" + what + "' must be 3 numbers");
+    return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+  }
+  Eigen::Isometry3d pose(const Json& j, const std::string& what) const {
+    if (!j.is_object()) fail("'" + what + "' must be a pose object");
+    const Eigen::Vector3d t = vec3(at(j, "position_m"), what + ".position_m");
+    const Json& q = at(j, "quaternion_xyzw");
+    if (!q.is_array() || q.size() != 4) fail("'" + what + ".quaternion_xyzw' must be 4 numbers");
+    Eigen::Quaterniond quat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+    if (!(std::abs(quat.norm() - 1.0) < 1e-3)) fail("'" + what + ".quaternion_xyzw' is not a unit quaternion");
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = quat.normalized().toRotationMatrix();
+    T.translation() = t;
+    return T;
+  }
+  std::optional<Eigen::AlignedBox3d> box(const Json& j, const char* key) const {
+    const Json& v = at(j, key);
+    if (v.is_null()) return std::nullopt;
+    return Eigen::AlignedBox3d(vec3(at(v, "min"), std::string(key) + ".min"), vec3(at(v, "max"), std::string(key) + ".max"));
+  }
+};
+
+}  // namespace
+
+void write_manifest(const std::string& dir, const Manifest& m) {
+  Json j;
+  j["schema_version"] = m.schema_version;
+  j["created_by"] = m.created_by;
+  j["scene"] = m.scene.empty() ? Json(nullptr) : Json(m.scene);
+  j["sensor"] = m.sensor;
+  j["resolution_m"] = m.resolution_m;
+  j["search_space_m"] = box_json(m.search_space_m);
+  j["view_bounds_m"] = box_json(m.view_bounds_m);
+  j["T_world_base"] = m.T_world_base ? pose_json(*m.T_world_base) : Json(nullptr);
+  j["arm"] = m.arm.empty() ? Json(nullptr) : Json(m.arm);
+  j["capmap"] = m.capmap.empty() ? Json(nullptr) : Json(m.capmap);
+  j["capmap_urdf_hash"] = m.capmap_urdf_hash.empty() ? Json(nullptr) : Json(m.capmap_urdf_hash);
+  j["planner"] = m.planner;
+  j["seed"] = m.seed;
+  j["pose_noise"] = {{"sigma_m", m.pose_noise_m}, {"sigma_deg", m.pose_noise_deg}};
+  j["registration"] = m.registration;
+  Json views = Json::array();
+  for (const ManifestView& v : m.views) {
+    Json jv = {{"view", v.view}, {"scan", v.scan}, {"map", v.map}, {"report", v.report},
+               {"stamp_s", v.stamp_s}, {"T_world_sensor", pose_json(v.T_world_sensor_prior)}};
+    jv["T_world_sensor_true"] = v.T_world_sensor_true ? pose_json(*v.T_world_sensor_true) : Json(nullptr);
+    jv["joints_rad"] = v.joints_rad.size() ? Json(std::vector<double>(v.joints_rad.data(), v.joints_rad.data() + v.joints_rad.size()))
+                                           : Json(nullptr);
+    views.push_back(jv);
+  }
+  j["views"] = views;
+  write_file_atomically((std::filesystem::path(dir) / "manifest.json").string(),
+                        [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+Manifest read_manifest(const std::string& dir) {
+  const std::string file = (std::filesystem::path(dir) / "manifest.json").string();
+  std::ifstream in(file);
+  if (!in) throw FileError(file, "cannot open the session manifest (is " + dir + " a session directory?)");
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const std::exception& e) {
+    throw FileError(file, std::string("not valid JSON: ") + e.what());
+  }
+  const Reader r{file};
+  Manifest m;
+  m.schema_version = int(r.number(j, "schema_version"));
+  if (m.schema_version != kSchemaVersion)
+    r.fail("schema_version " + std::to_string(m.schema_version) + " is not one this fvx reads (" +
+           std::to_string(kSchemaVersion) + ")");
+  m.created_by = r.text(j, "created_by");
+  m.scene = r.at(j, "scene").is_null() ? "" : r.text(j, "scene");
+  m.sensor = r.text(j, "sensor");
+  m.resolution_m = r.number(j, "resolution_m");
+  if (!(m.resolution_m > 0)) r.fail("'resolution_m' must be > 0");
+  m.search_space_m = r.box(j, "search_space_m");
+  m.view_bounds_m = r.box(j, "view_bounds_m");
+  if (!r.at(j, "T_world_base").is_null()) m.T_world_base = r.pose(j["T_world_base"], "T_world_base");
+  m.arm = r.at(j, "arm").is_null() ? "" : r.text(j, "arm");
+  m.capmap = r.at(j, "capmap").is_null() ? "" : r.text(j, "capmap");
+  m.capmap_urdf_hash = r.at(j, "capmap_urdf_hash").is_null() ? "" : r.text(j, "capmap_urdf_hash");
+  m.planner = r.text(j, "planner");
+  m.seed = r.at(j, "seed").get<std::uint64_t>();
+  m.pose_noise_m = r.number(r.at(j, "pose_noise"), "sigma_m");
+  m.pose_noise_deg = r.number(r.at(j, "pose_noise"), "sigma_deg");
+  m.registration = r.at(j, "registration").get<bool>();
+  const Json& views = r.at(j, "views");
+  if (!views.is_array()) r.fail("'views' must be an array");
+  for (const Json& jv : views) {
+    ManifestView v;
+    v.view = int(r.number(jv, "view"));
+    if (v.view != int(m.views.size()))
+      r.fail("view " + std::to_string(v.view) + " is out of order (expected " + std::to_string(m.views.size()) + ")");
+    v.scan = r.text(jv, "scan");
+    v.map = r.text(jv, "map");
+    v.report = r.text(jv, "report");
+    v.stamp_s = r.number(jv, "stamp_s");
+    v.T_world_sensor_prior = r.pose(r.at(jv, "T_world_sensor"), "T_world_sensor");
+    if (!r.at(jv, "T_world_sensor_true").is_null()) v.T_world_sensor_true = r.pose(jv["T_world_sensor_true"], "T_world_sensor_true");
+    if (!r.at(jv, "joints_rad").is_null()) {
+      const auto q = jv["joints_rad"].get<std::vector<double>>();
+      v.joints_rad = Eigen::Map<const Eigen::VectorXd>(q.data(), Eigen::Index(q.size()));
+    }
+    m.views.push_back(std::move(v));
+  }
+  return m;
+}
+
+void write_depth_camera(const std::string& path, const io::DepthCamera& c) {
+  const Json j = {{"fx", c.intrinsics.fx},       {"fy", c.intrinsics.fy},         {"cx", c.intrinsics.cx},
+                  {"cy", c.intrinsics.cy},       {"depth_scale", c.intrinsics.depth_scale},
+                  {"width", c.intrinsics.width}, {"height", c.intrinsics.height}, {"depth_min_m", c.depth_min_m},
+                  {"depth_max_m", c.depth_max_m}};
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+}  // namespace fvx::session

@@ -1,0 +1,116 @@
+#include "fvx/sim/exploration_score.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <deque>
+#include <thread>
+
+#include "fvx/map/dense_grid.hpp"
+
+namespace fvx::sim {
+
+ExplorationScore::ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBox3d& search_space_m,
+                                   std::optional<Eigen::AlignedBox3d> target_m)
+    : target_m_(std::move(target_m)) {
+  const Eigen::Vector3i n = gt.size();
+  auto index = [&](const Eigen::Vector3i& c) { return (std::size_t(c.z()) * n.y() + c.y()) * n.x() + c.x(); };
+  std::vector<std::uint8_t> reached(std::size_t(n.x()) * n.y() * n.z(), 0);
+  std::deque<Eigen::Vector3i> queue;
+  // Seeds: the empty cells on the region's border.
+  for (int z = 0; z < n.z(); ++z)
+    for (int y = 0; y < n.y(); ++y)
+      for (int x = 0; x < n.x(); ++x) {
+        const bool border = x == 0 || y == 0 || z == 0 || x == n.x() - 1 || y == n.y() - 1 || z == n.z() - 1;
+        const Eigen::Vector3i c(x, y, z);
+        if (border && !gt.solid(gt.first_cell() + c)) {
+          reached[index(c)] = 1;
+          queue.push_back(c);
+        }
+      }
+  while (!queue.empty()) {
+    const Eigen::Vector3i c = queue.front();
+    queue.pop_front();
+    for (int a = 0; a < 3; ++a)
+      for (int step : {-1, 1}) {
+        Eigen::Vector3i m = c;
+        m[a] += step;
+        if (m[a] < 0 || m[a] >= n[a] || reached[index(m)] || gt.solid(gt.first_cell() + m)) continue;
+        reached[index(m)] = 1;
+        queue.push_back(m);
+      }
+  }
+  for (int z = 0; z < n.z(); ++z)
+    for (int y = 0; y < n.y(); ++y)
+      for (int x = 0; x < n.x(); ++x) {
+        const Eigen::Vector3d p = gt.center_of(gt.first_cell() + Eigen::Vector3i(x, y, z));
+        if (reached[index({x, y, z})] && search_space_m.contains(p)) observable_.push_back(p);
+      }
+}
+
+void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vector<Eigen::Isometry3d>& T_world_sensor,
+                                         const std::vector<Eigen::Vector3d>& rays_sensor, double depth_min_m,
+                                         double depth_max_m, unsigned threads) {
+  const map::OccupancyMap truth = gt.to_map();
+  const double R = gt.resolution_m();
+  const Eigen::Vector3d lo = gt.center_of(gt.first_cell()) - Eigen::Vector3d::Constant(R / 2);
+  const map::DenseGrid grid(truth, Eigen::AlignedBox3d(lo, lo + gt.size().cast<double>() * R));
+  const unsigned n = std::max(1u, threads ? threads : std::thread::hardware_concurrency());
+  std::vector<std::vector<std::uint8_t>> revealed(n, std::vector<std::uint8_t>(grid.cell_count(), 0));
+  std::atomic<std::size_t> next{0};
+  auto work = [&](unsigned t) {
+    std::vector<std::size_t> crossed;
+    for (std::size_t p = next++; p < T_world_sensor.size(); p = next++) {
+      const Eigen::Isometry3d& T = T_world_sensor[p];
+      for (const Eigen::Vector3d& ray : rays_sensor) {
+        crossed.clear();
+        std::size_t hit = std::size_t(-1);
+        grid.walk(T.translation(), T.linear() * ray, depth_max_m * ray.norm(), [&](std::size_t i, map::VoxelState s) {
+          if (s == map::VoxelState::Occupied) {
+            hit = i;
+            return false;
+          }
+          crossed.push_back(i);
+          return true;
+        });
+        if (hit == std::size_t(-1)) continue;  // no surface within range: no measurement
+        const double depth = (grid.center_of(grid.key(hit)) - T.translation()).dot(T.linear().col(2));
+        if (depth < depth_min_m || depth > depth_max_m) continue;
+        for (const std::size_t i : crossed) revealed[t][i] = 1;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& t : pool) t.join();
+  std::vector<Eigen::Vector3d> kept;
+  for (const Eigen::Vector3d& p : observable_) {
+    const auto key = truth.key_of(p);
+    if (!key || !grid.contains(*key)) continue;
+    const std::size_t i = grid.index(*key);
+    if (std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return r[i] != 0; })) kept.push_back(p);
+  }
+  observable_ = std::move(kept);
+}
+
+double ExplorationScore::known_fraction(const map::OccupancyMap& map) const {
+  if (observable_.empty()) return 1.0;
+  std::size_t known = 0;
+  for (const Eigen::Vector3d& p : observable_) {
+    const auto key = map.key_of(p);
+    known += key && map.state(*key) != map::VoxelState::Unknown;
+  }
+  return double(known) / double(observable_.size());
+}
+
+std::size_t ExplorationScore::target_cells_seen(const map::OccupancyMap& map) const {
+  if (!target_m_) return 0;
+  const double R = map.resolution_m();
+  Eigen::AlignedBox3d above_floor = *target_m_;
+  above_floor.min().z() += R;
+  std::size_t seen = 0;
+  for (const Eigen::Vector3f& c : map.occupied_centers()) seen += above_floor.contains(c.cast<double>());
+  return seen;
+}
+
+}  // namespace fvx::sim

@@ -1,0 +1,162 @@
+// Session directories and the closed loop: the manifest round-trips and refuses what it cannot
+// read; explore is deterministic, moves the sensor, and stops when no view sees a void.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "fvx/core/error.hpp"
+#include "fvx/session/session.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/viewpoints/fov.hpp"
+#include "test_support.hpp"
+
+namespace fvx::session {
+namespace {
+
+Eigen::Isometry3d pose(double x, double y, double z, double angle) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  T.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()).toRotationMatrix();
+  return T;
+}
+
+TEST(Session, ManifestRoundTrips) {
+  const test::TempDir dir;
+  Manifest m;
+  m.created_by = "fvx explore test";
+  m.scene = "data/scenes/crates.ply";
+  m.search_space_m = Eigen::AlignedBox3d(Eigen::Vector3d(0.1, -0.2, 0.0), Eigen::Vector3d(1.0, 0.5, 0.6));
+  m.T_world_base = pose(0.2, 0.0, 0.0, 0.4);
+  m.arm = "arm.urdf";
+  m.capmap = "arm.fcm";
+  m.capmap_urdf_hash = "0123abcd";
+  m.planner = "frontier";
+  m.seed = 42;
+  m.pose_noise_m = 0.02;
+  m.pose_noise_deg = 2.0;
+  m.registration = true;
+  for (int i = 0; i < 3; ++i) {
+    ManifestView v;
+    v.view = i;
+    v.scan = "scans/view00" + std::to_string(i) + ".pcd";
+    v.map = "maps/view00" + std::to_string(i) + ".ot";
+    v.report = "reports/view00" + std::to_string(i) + ".json";
+    v.T_world_sensor_prior = pose(0.1 * i, 0.2, 0.9, 0.1 * i);
+    if (i) v.T_world_sensor_true = pose(0.1 * i + 0.01, 0.2, 0.9, 0.1 * i);
+    v.joints_rad = Eigen::VectorXd::LinSpaced(5, -1.0, 1.0 + i);
+    v.stamp_s = i;
+    m.views.push_back(v);
+  }
+  write_manifest(dir.path().string(), m);
+  const Manifest r = read_manifest(dir.path().string());
+  EXPECT_EQ(r.created_by, m.created_by);
+  EXPECT_EQ(r.scene, m.scene);
+  EXPECT_TRUE(r.search_space_m->isApprox(*m.search_space_m));
+  EXPECT_FALSE(r.view_bounds_m.has_value());
+  EXPECT_TRUE(r.T_world_base->isApprox(*m.T_world_base, 1e-12));
+  EXPECT_EQ(r.capmap_urdf_hash, m.capmap_urdf_hash);
+  EXPECT_EQ(r.planner, "frontier");
+  EXPECT_EQ(r.seed, 42u);
+  EXPECT_EQ(r.pose_noise_deg, 2.0);
+  EXPECT_TRUE(r.registration);
+  ASSERT_EQ(r.views.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(r.views[i].scan, m.views[i].scan);
+    EXPECT_TRUE(r.views[i].T_world_sensor_prior.isApprox(m.views[i].T_world_sensor_prior, 1e-12));
+    EXPECT_EQ(r.views[i].T_world_sensor_true.has_value(), i > 0);
+    EXPECT_TRUE(r.views[i].joints_rad.isApprox(m.views[i].joints_rad));
+  }
+}
+
+TEST(Session, ABadManifestNamesTheProblem) {
+  const test::TempDir dir;
+  EXPECT_THROW(read_manifest(dir.path().string()), FileError);
+  Manifest m;
+  m.created_by = "test";
+  write_manifest(dir.path().string(), m);
+  const std::string file = (dir.path() / "manifest.json").string();
+  std::string text = test::slurp(file);
+  const auto version = text.find("\"schema_version\": 1");
+  ASSERT_NE(version, std::string::npos);
+  std::ofstream(file) << std::string(text).replace(version, 19, "\"schema_version\": 7");
+  try {
+    read_manifest(dir.path().string());
+    FAIL() << "schema 7 was read";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("schema_version 7"), std::string::npos) << e.what();
+  }
+  std::ofstream(file) << "{\"schema_version\": 1";
+  EXPECT_THROW(read_manifest(dir.path().string()), FileError);
+}
+
+// A free-flying Kinect in the crates scene: the loop moves, reveals, and gives the same views
+// on a second run.
+TEST(Explore, TheLoopMovesRevealsAndRepeatsItself) {
+  const sim::Scene scene = sim::builtin_scene("crates");
+  const auto caster = sim::make_ray_caster(scene.mesh);
+  const Sensor kinect = [&](const Eigen::Isometry3d& T, int view) {
+    const sim::Frame f = sim::render(*caster, T, sim::SensorConfig{}, std::uint64_t(view));
+    std::vector<Eigen::Vector3d> points;
+    for (const auto& p : f.points_sensor) points.push_back(p.cast<double>());
+    return points;
+  };
+  ExploreConfig config;
+  config.pipeline.bounds_m = scene.info.search_space;
+  config.pipeline.nbv.ray_cols = 40;
+  config.pipeline.nbv.ray_rows = 30;
+  config.max_views = 4;
+  const Eigen::Vector3d eye(0.05, 0.0, 0.95), target = scene.info.search_space->center();
+  config.T_world_sensor_start.translation() = eye;
+  config.T_world_sensor_start.linear() = viewpoints::look_along(target - eye, 0.0);
+  auto run = [&] {
+    std::vector<ViewRecord> records;
+    const ExploreResult r = explore(kinect, std::nullopt, config, [&](const ViewRecord& v, const pipeline::State& s) {
+      EXPECT_EQ(s.steps, v.view + 1);
+      records.push_back(v);
+      records.back().points_sensor.clear();
+    });
+    EXPECT_EQ(r.views, int(records.size()));
+    return records;
+  };
+  const std::vector<ViewRecord> a = run(), b = run();
+  ASSERT_GE(a.size(), 2u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(a[i].T_world_sensor_true.isApprox(b[i].T_world_sensor_true)) << "view " << i;
+    EXPECT_EQ(a[i].step.analysis.void_cells, b[i].step.analysis.void_cells);
+    // Without noise the prior is the truth and the sensor went where the search said.
+    EXPECT_TRUE(a[i].T_world_sensor_prior.isApprox(a[i].T_world_sensor_true));
+    if (i > 0) {
+      const nbv::View& chosen = a[i - 1].step.nbv.views[*a[i - 1].chosen];
+      EXPECT_TRUE(a[i].T_world_sensor_true.isApprox(chosen.T_world_sensor));
+      EXPECT_EQ(a[i].previous_prediction, chosen.void_cells_seen);
+      EXPECT_GT(a[i].revealed_void_cells, 0u) << "view " << i;
+    }
+  }
+}
+
+TEST(Explore, AStartOutOfReachIsRefused) {
+  const capmap::CapabilityMap cm = capmap::CapabilityMap::load(test::source("data/arms/fvx-arm.fcm"));
+  nbv::Reach reach{&cm, Eigen::Isometry3d::Identity(), nullptr, {}};
+  ExploreConfig config;
+  config.T_world_sensor_start.translation() = Eigen::Vector3d(30.0, 0.0, 1.0);
+  int calls = 0;
+  const Sensor none = [&](const Eigen::Isometry3d&, int) {
+    ++calls;
+    return std::vector<Eigen::Vector3d>{};
+  };
+  try {
+    explore(none, reach, config, [](const ViewRecord&, const pipeline::State&) {});
+    FAIL() << "a start 30 m away was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of the arm's reach"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(calls, 0);
+  config.max_views = 0;
+  EXPECT_THROW(explore(none, std::nullopt, config, [](const ViewRecord&, const pipeline::State&) {}), UsageError);
+}
+
+}  // namespace
+}  // namespace fvx::session
