@@ -33,12 +33,14 @@ const CommandSpec kExploreSpec = {
              arm_options(),
              {
                  {"planner", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive"},
-                 {"start", 0, "ex,ey,ez,tx,ty,tz", "first view: sensor at eye E looking at T, metres (default: "
-                                                   "0.95 m above the base, 0.15 m behind it, looking at the "
-                                                   "search space's centre)"},
+                 {"start", 0, "ex,ey,ez,tx,ty,tz", "first view: sensor at eye E looking at T, metres (default, "
+                                                   "with an arm: its farthest reachable pose aimed within 10 "
+                                                   "degrees of the search space's centre)"},
                  {"max-views", 0, "N", "stop after N scans (default 15)"},
                  {"pose-noise", 0, "M,DEG", "recorded poses after the first are off by Gaussian noise of sigma M "
                                             "metres and DEG degrees per axis; turns registration on"},
+                 {"far-voids-only", 0, nullptr, "U counts only void cells at the sensor's minimum depth or "
+                                                "beyond (fvx nbv --far-voids-only)"},
                  {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)"},
                  {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)"},
@@ -142,27 +144,32 @@ Json row_json(const Row& r) {
 }
 
 /// The default first view with an arm: of the capability map's reachable poses outside the
-/// search space, the one whose direction points most nearly at `target` (ties: the higher).
+/// search space that aim within 10° of `target`, the farthest from it (the widest view of
+/// the scene, as a robot's first look would be); without any, the best-aimed pose.
 Eigen::Isometry3d start_facing(const nbv::Reach& reach, const Eigen::Vector3d& target, const Eigen::AlignedBox3d& S) {
   const capmap::CapabilityMap& cm = *reach.capmap;
-  double best = -2.0, best_z = -1e9;
+  const double aimed = std::cos(10.0 * M_PI / 180.0);
+  double best_cos = -2.0, best_far = -1.0;
   Eigen::Vector3d eye = Eigen::Vector3d::Zero(), dir = Eigen::Vector3d::UnitZ();
   for (const auto& [voxel, bits] : cm.voxels()) {
     const Eigen::Vector3d p = reach.T_world_base * cm.center_of(voxel);
-    if (S.contains(p) || (target - p).norm() < 0.3) continue;
-    const Eigen::Vector3d want = (target - p).normalized();
+    if (S.contains(p)) continue;
+    const double distance = (target - p).norm();
+    const Eigen::Vector3d want = (target - p) / distance;
     for (const int d : cm.reachable_directions(cm.center_of(voxel))) {
       const Eigen::Vector3d d_world = reach.T_world_base.linear() * cm.directions()[d];
       const double c = d_world.dot(want);
-      if (c > best + 1e-9 || (c > best - 1e-9 && p.z() > best_z)) {
-        best = c;
-        best_z = p.z();
+      // Aimed poses win by distance; until one is found, the best aim wins.
+      const bool better = c >= aimed ? (best_cos < aimed || distance > best_far + 1e-9) : (best_cos < aimed && c > best_cos);
+      if (better) {
+        best_cos = c;
+        best_far = distance;
         eye = p;
         dir = d_world;
       }
     }
   }
-  if (best < -1.0) throw Error("fvx explore: the capability map reaches no pose outside the search space; give --start");
+  if (best_cos < -1.0) throw Error("fvx explore: the capability map reaches no pose outside the search space; give --start");
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = eye;
   T.linear() = viewpoints::look_along(dir, 0.0);
@@ -196,6 +203,7 @@ int run_explore(const Args& args) {
   nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
   nc.view_bounds_m = parse_bounds(args, "view-bounds");
+  nc.count_near_void_cells = !args.has("far-voids-only");
   pc.clusters.seed = nc.seed;
   pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;

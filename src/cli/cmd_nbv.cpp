@@ -41,6 +41,8 @@ const CommandSpec kNbvSpec = {
                  {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
                  {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
                  {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
+                 {"far-voids-only", 0, nullptr, "U counts only void cells at the sensor's minimum depth or "
+                                                "beyond (default: every void cell a ray crosses)"},
                  {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
@@ -248,6 +250,7 @@ int run_nbv(const Args& args) {
       throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
   }
   config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
+  config.count_near_void_cells = !args.has("far-voids-only");
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   config.threads = unsigned(args.integer("threads", 0, 0, 1024));
@@ -298,6 +301,7 @@ int run_nbv(const Args& args) {
                       {"refine_step_m", config.refine_step_m},
                       {"refine_max_m", config.refine_max_m},
                       {"exhaustive_rolls", config.exhaustive_rolls},
+                      {"count_near_void_cells", config.count_near_void_cells},
                       {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
                       {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
                       {"min_fit_score", cluster_config.min_fit_score},

@@ -52,7 +52,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   const io::Intrinsics& K = config.sensor.intrinsics;
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
-                                                        config.sensor.depth_min_m);
+                                                        config.sensor.depth_min_m, config.count_near_void_cells);
 }
 
 std::vector<std::uint8_t> Search::void_mask() const {

@@ -34,12 +34,14 @@ Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_r
 }
 
 FovScorer::FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target,
-                     std::vector<Eigen::Vector3d> rays_sensor, double depth_max_m, double depth_min_m)
+                     std::vector<Eigen::Vector3d> rays_sensor, double depth_max_m, double depth_min_m,
+                     bool near_targets_count)
     : grid_(grid),
       target_(std::move(target)),
       rays_sensor_(std::move(rays_sensor)),
       depth_max_m_(depth_max_m),
-      depth_min_m_(depth_min_m) {
+      depth_min_m_(depth_min_m),
+      count_from_m_(near_targets_count ? 0.0 : depth_min_m) {
   FVX_ASSERT(target_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
@@ -73,7 +75,7 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
       // The sensor measures nothing nearer than the minimum depth, so it cannot promise
       // to reveal a target there (its cell centre's depth).
       if (target_[i] && ws.stamp[i] != now &&
-          (depth_min_m_ <= 0.0 || (grid_.center_of(grid_.key(i)) - origin).dot(axis) >= depth_min_m_))
+          (count_from_m_ <= 0.0 || (grid_.center_of(grid_.key(i)) - origin).dot(axis) >= count_from_m_))
         ws.ray_targets.push_back(i);
       return true;
     });

@@ -68,6 +68,10 @@ struct Config {
   std::optional<Eigen::AlignedBox3d> view_bounds_m;
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
   int random_tries = 1000;            ///< random: valid poses drawn at most, until one sees a void cell
+  /// Count void cells nearer than the sensor's minimum depth in U (ARCHITECTURE.md §3: every
+  /// void cell crossed). false: only cells at depth_min_m or beyond count — a view that close
+  /// to a hidden surface records nothing, so an exploration loop does not chase them.
+  bool count_near_void_cells = true;
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
   unsigned threads = 0;               ///< accumulation and scoring threads; 0: all cores (same result)

@@ -5,10 +5,10 @@
 /// grid pass free and unknown cells and stop at an occupied cell, at the depth limit or at
 /// the grid's edge (ARCHITECTURE.md §3). An unknown cell may hide a surface, so U_i is what
 /// the view can reveal at best. A ray that ends on an occupied cell nearer than the sensor's
-/// minimum depth measures nothing (a Kinect returns no depth there) and reveals nothing, and
-/// target cells nearer than the minimum depth do not count: whether the ray measures
-/// anything beyond them is not known, and a surface hidden in the unknown within the minimum
-/// depth leaves the whole ray blank.
+/// minimum depth measures nothing (a Kinect returns no depth there) and reveals nothing.
+/// Optionally (`near_targets_count` false) target cells nearer than the minimum depth do not
+/// count either: whether the ray measures anything beyond them is not known, and a surface
+/// hidden in the unknown within the minimum depth leaves the whole ray blank.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
@@ -33,8 +33,9 @@ class FovScorer {
  public:
   /// `target`: per grid cell (DenseGrid index), non-zero where a cell counts. The grid must
   /// outlive the scorer.
+  /// `near_targets_count`: false drops targets nearer than depth_min_m (see the file comment).
   FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target, std::vector<Eigen::Vector3d> rays_sensor,
-            double depth_max_m, double depth_min_m = 0.0);
+            double depth_max_m, double depth_min_m = 0.0, bool near_targets_count = true);
 
   /// Scratch space of one thread: a visit stamp per grid cell, so each cell counts once.
   struct Workspace {
@@ -61,6 +62,7 @@ class FovScorer {
   std::vector<Eigen::Vector3d> rays_sensor_;
   double depth_max_m_;
   double depth_min_m_;
+  double count_from_m_;  ///< targets nearer than this (depth) do not count
 };
 
 }  // namespace fvx::viewpoints

@@ -162,5 +162,32 @@ TEST(FovScorer, CountsTheDistinctTargetCellsTheRaysCross) {
   }
 }
 
+// Without near targets, a pose counts exactly the targets it counts with them whose cell
+// centre lies at the minimum depth or beyond (the oracle: the full set, filtered by depth).
+// The ray-ending rule is the same in both, so with depth_min 0 both count alike.
+TEST(FovScorer, FarTargetsOnlyDropsTheCellsNearerThanTheMinimumDepth) {
+  const RandomGrid g(4);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  const auto rays = ray_fan(io::Intrinsics{}, 8, 6);
+  const double depth_min = 0.3;
+  const FovScorer all(*g.grid, g.target, rays, 0.9, depth_min), far(*g.grid, g.target, rays, 0.9, depth_min, false);
+  FovScorer::Workspace ws;
+  std::size_t dropped = 0;
+  for (int pose = 0; pose < 30; ++pose) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+    T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 0.0);
+    std::vector<std::size_t> seen_all, seen_far, expected;
+    all.score(T, ws, &seen_all);
+    far.score(T, ws, &seen_far);
+    for (const std::size_t i : seen_all)
+      if ((g.grid->center_of(g.grid->key(i)) - T.translation()).dot(T.linear().col(2)) >= depth_min) expected.push_back(i);
+    ASSERT_EQ(seen_far, expected) << "pose " << pose;
+    dropped += seen_all.size() - seen_far.size();
+  }
+  EXPECT_GT(dropped, 0u);
+}
+
 }  // namespace
 }  // namespace fvx::viewpoints
