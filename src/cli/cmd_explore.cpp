@@ -259,8 +259,16 @@ int run_explore(const Args& args) {
   }
   const auto caster = sim::make_ray_caster(scene.mesh);
   const double R = pc.resolution_m;
-  // Ground truth over S grown by a margin, so the air around the containers reaches the border.
-  const Eigen::AlignedBox3d gt_region(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25));
+  // Ground truth over S grown by a margin, so the air around the containers reaches the
+  // border, and over every place the sensor can be (the arm's capability map, the start):
+  // rays of the observability check start inside it.
+  Eigen::AlignedBox3d gt_region(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25));
+  gt_region.extend(config.T_world_sensor_start.translation());
+  if (arm_inputs.reach)
+    for (const auto& entry : arm_inputs.capability_map->voxels())
+      gt_region.extend(arm_inputs.T_world_base * arm_inputs.capability_map->center_of(entry.first));
+  gt_region = gt_region.intersection(Eigen::AlignedBox3d(S.min() - Eigen::Vector3d::Constant(2.0),
+                                                         S.max() + Eigen::Vector3d::Constant(2.0)));
   {
     const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
     const Eigen::Vector3d centre = ((eye.array() * (1.0 / R)).floor() + 0.5).matrix() * R;  // as cell_of()
@@ -400,13 +408,19 @@ int run_explore(const Args& args) {
     for (const Row& r : rows) jrows.push_back(row_json(r));
     report["results"] = {{"session", dir.string()}, {"views", result.views}, {"end", result.end},
                          {"utility_exhausted", result.utility_exhausted},
-                         {"observable_cells", score.observable_cells()}, {"rows", jrows}};
+                         {"observable_cells", score.observable_cells()},
+                         {"observable_target_cells",
+                          score.observable_target_cells() ? Json(*score.observable_target_cells()) : Json(nullptr)},
+                         {"rows", jrows}};
     report["warnings"] = Json::array();
     write_report(report, "");
   } else {
     print_table(rows, format, std::cout);
     if (format == Format::Markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
   }
+  if (score.observable_target_cells() && *score.observable_target_cells() < sim::ExplorationScore::kTargetCellsSeen)
+    std::cerr << "fvx explore: warning: from this base no pose of the arm sees the target (ground truth: "
+              << *score.observable_target_cells() << " of its cells measurable); move --base\n";
   std::cerr << "fvx explore: " << result.end << "; session in " << dir.string() << "\n";
   return 0;
 }

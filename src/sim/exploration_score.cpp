@@ -76,6 +76,7 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
         const double depth = (grid.center_of(grid.key(hit)) - T.translation()).dot(T.linear().col(2));
         if (depth < depth_min_m || depth > depth_max_m) continue;
         for (const std::size_t i : crossed) revealed[t][i] = 1;
+        revealed[t][hit] |= 2;  // a measured surface
       }
     }
   };
@@ -88,9 +89,18 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
     const auto key = truth.key_of(p);
     if (!key || !grid.contains(*key)) continue;
     const std::size_t i = grid.index(*key);
-    if (std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return r[i] != 0; })) kept.push_back(p);
+    if (std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return (r[i] & 1) != 0; })) kept.push_back(p);
   }
   observable_ = std::move(kept);
+  observable_target_cells_ = 0;
+  if (target_m_) {
+    Eigen::AlignedBox3d above_floor = *target_m_;
+    above_floor.min().z() += R;
+    for (std::size_t i = 0; i < grid.cell_count(); ++i)
+      if (above_floor.contains(grid.center_of(grid.key(i))) &&
+          std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return (r[i] & 2) != 0; }))
+        ++*observable_target_cells_;
+  }
 }
 
 double ExplorationScore::known_fraction(const map::OccupancyMap& map) const {

@@ -30,12 +30,16 @@ class ExplorationScore {
   /// Keeps only the observable cells that a sensor at one of `T_world_sensor` would reveal:
   /// cells a ray (rays_sensor, scaled to depth 1) crosses before it hits a solid cell at a
   /// depth within [depth_min_m, depth_max_m] — the Kinect's own rule, on the ground truth.
-  /// With the poses an arm can reach, this is what that arm can observe at all.
+  /// With the poses an arm can reach, this is what that arm can observe at all. Poses
+  /// outside the ground truth's region see nothing: make the region hold them.
   void restrict_to_views(const GroundTruth& gt, const std::vector<Eigen::Isometry3d>& T_world_sensor,
                          const std::vector<Eigen::Vector3d>& rays_sensor, double depth_min_m, double depth_max_m,
                          unsigned threads = 0);
 
   std::size_t observable_cells() const { return observable_.size(); }
+  /// After restrict_to_views: the target's surface cells (in its box above its lowest cell)
+  /// that some of those poses would measure. 0: no pose of the arm can see the target.
+  std::optional<std::size_t> observable_target_cells() const { return observable_target_cells_; }
   /// Observable cells the map knows (free or occupied), as a share of all observable cells.
   double known_fraction(const map::OccupancyMap& map) const;
   /// Occupied map cells in the target box above its lowest cell (0 without a target).
@@ -45,6 +49,7 @@ class ExplorationScore {
  private:
   std::vector<Eigen::Vector3d> observable_;  ///< cell centres, world frame
   std::optional<Eigen::AlignedBox3d> target_m_;
+  std::optional<std::size_t> observable_target_cells_;
 };
 
 }  // namespace fvx::sim
