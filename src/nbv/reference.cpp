@@ -147,18 +147,7 @@ Result select_frontier(Search& s, Result result) {
 
   t0 = Clock::now();
   Pruning& pruning = result.pruning;
-  std::vector<std::size_t> candidates;
-  for (std::size_t i = 0; i < rays_through.size(); ++i) {
-    if (!(rays_through[i] > 0.0)) continue;
-    ++pruning.utility_cells;
-    const map::VoxelKey k = s.grid.key(i);
-    const bool keep = s.keep_position(k, s.grid.center_of(k), pruning);
-    if (keep) candidates.push_back(i);
-    result.utility_field.push_back({s.grid.center_of(k), rays_through[i], keep});
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [&](std::size_t l, std::size_t r) { return rays_through[l] > rays_through[r]; });
-  pruning.candidate_cells = candidates.size();
+  const std::vector<std::size_t> candidates = s.prune(rays_through, result);
   result.timing.pruning_s = seconds_since(t0);
 
   t0 = Clock::now();

@@ -97,6 +97,21 @@ bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_w
   return true;
 }
 
+std::vector<std::size_t> Search::prune(const std::vector<double>& value, Result& result) const {
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    if (!(value[i] > 0.0)) continue;
+    ++result.pruning.utility_cells;
+    const map::VoxelKey k = grid.key(i);
+    const bool keep = keep_position(k, grid.center_of(k), result.pruning);
+    if (keep) candidates.push_back(i);
+    result.utility_field.push_back({grid.center_of(k), value[i], keep});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t l, std::size_t r) { return value[l] > value[r]; });
+  result.pruning.candidate_cells = candidates.size();
+  return candidates;
+}
+
 bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const {
   ++pruning.orientations_sampled;
   if (!reach) return true;

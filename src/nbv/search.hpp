@@ -36,6 +36,9 @@ struct Search {
 
   /// Position checks in the paper's order, each counted in `pruning` when it fails.
   bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
+  /// The cells with a value > 0 that pass keep_position, by value (descending; ties: index
+  /// order), each recorded in result.utility_field and counted in result.pruning.
+  std::vector<std::size_t> prune(const std::vector<double>& value, Result& result) const;
   /// Orientation checks: the capability map's bit, then IK when an arm is given (its
   /// restarts seeded by `pose_seed`); fills pose.joints_rad.
   bool keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const;
