@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "analysis_output.hpp"
 #include "command_table.hpp"
@@ -247,11 +246,8 @@ int run_explore(const Args& args) {
     config.T_world_sensor_start = start_facing(*arm_inputs.reach, S.center() - Eigen::Vector3d(0, 0, 0.1), S);
   } else {
     const Eigen::Vector3d eye = arm_inputs.T_world_base * Eigen::Vector3d(-0.15, 0.0, 0.95);
-    const Eigen::Vector3d target = S.center() - Eigen::Vector3d(0, 0, 0.1);
-    std::ostringstream text;
-    text.precision(17);
-    text << eye.x() << "," << eye.y() << "," << eye.z() << "," << target.x() << "," << target.y() << "," << target.z();
-    config.T_world_sensor_start = parse_look_at(text.str(), "the default start");
+    config.T_world_sensor_start.translation() = eye;
+    config.T_world_sensor_start.linear() = viewpoints::look_along(S.center() - Eigen::Vector3d(0, 0, 0.1) - eye, 0.0);
   }
   {
     const auto problems = config.validate();
