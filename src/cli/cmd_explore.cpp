@@ -225,11 +225,7 @@ int run_explore(const Args& args) {
   render_config.depth_max_m = nc.sensor.depth_max_m;
   render_config.seed = nc.seed;
   render_config.threads = nc.threads;
-  if (args.has("noise")) {
-    const std::string model = args.get("noise");
-    if (model == "kinect") render_config.noise_m_per_m2 = 1.4e-3;
-    else if (model != "none") throw UsageError("--noise: '" + model + "' is not a noise model; use none or kinect");
-  }
+  render_config.noise_m_per_m2 = parse_depth_noise(args);
 
   // Inputs: the scene, the arm; then the start pose against both.
   const sim::Scene scene = scene_from(args.positional[0], args);

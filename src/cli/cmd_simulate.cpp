@@ -70,11 +70,7 @@ sim::SensorConfig sensor_from(const Args& args) {
   c.depth_min_m = args.number("depth-min", c.depth_min_m, 0.0, 1e3);
   c.depth_max_m = args.number("depth-max", c.depth_max_m, 0.0, 1e3, true);
   if (!(c.depth_max_m > c.depth_min_m)) throw UsageError("fvx simulate: --depth-max must be greater than --depth-min");
-  if (args.has("noise")) {
-    const std::string model = args.get("noise");
-    if (model == "kinect") c.noise_m_per_m2 = 1.4e-3;
-    else if (model != "none") throw UsageError("--noise: '" + model + "' is not a noise model; use none or kinect");
-  }
+  c.noise_m_per_m2 = parse_depth_noise(args);
   c.quantize_disparity = args.has("quantize");
   c.dropout_incidence_deg = args.number("dropout-deg", c.dropout_incidence_deg, 0.0, 90.0, true);
   c.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));

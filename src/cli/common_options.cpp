@@ -130,6 +130,13 @@ Json capmap_json(const Args& args, const ArmInputs& in) {
           {"urdf_hash", h.urdf_hash},   {"voxel_m", h.voxel_m},     {"directions", h.directions}};
 }
 
+double parse_depth_noise(const Args& args) {
+  const std::string model = args.has("noise") ? args.get("noise") : "none";
+  if (model == "kinect") return 1.4e-3;
+  if (model != "none") throw UsageError("--noise: '" + model + "' is not a noise model; use none or kinect");
+  return 0.0;
+}
+
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what) {
   const std::vector<double> v = parse_double_list(text, what + " (ex,ey,ez,tx,ty,tz)", 6);
   const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);

@@ -52,6 +52,10 @@ void check_arm_options(const Args& args, const std::string& command);
 void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& out);
 Json capmap_json(const Args& args, const ArmInputs& in);
 
+/// --noise none|kinect: the virtual Kinect's depth noise coefficient (σ = k·z², metres):
+/// 0, or 1.4e-3 (Khoshelham & Elberink 2012). UsageError for another model.
+double parse_depth_noise(const Args& args);
+
 /// "ex,ey,ez,tx,ty,tz": a sensor at eye E looking at target T, world z up (optical frame:
 /// x right, y down). UsageError naming `what`.
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);
