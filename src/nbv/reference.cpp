@@ -161,12 +161,7 @@ Result select_frontier(Search& s, Result result) {
     for (const Eigen::Matrix3d& R : viewpoints::sample_orientations(p, {target->centroid_m},
                                                                     s.config.orientations_per_cell, jitter_rad, rng)) {
       if (poses.size() >= std::size_t(s.config.valid_poses)) break;
-      Pose pose;
-      pose.T_world_sensor.linear() = s.snap_to_reach(p, R);
-      pose.T_world_sensor.translation() = p;
-      pose.cell = cell;
-      if (s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
-        poses.push_back(std::move(pose));
+      s.add_pose(p, R, cell, pruning, poses);
     }
   }
   pruning.valid_poses = poses.size();

@@ -112,6 +112,16 @@ std::vector<std::size_t> Search::prune(const std::vector<double>& value, Result&
   return candidates;
 }
 
+void Search::add_pose(const Eigen::Vector3d& p, const Eigen::Matrix3d& R, std::size_t cell, Pruning& pruning,
+                      std::vector<Pose>& poses) const {
+  Pose pose;
+  pose.T_world_sensor.linear() = snap_to_reach(p, R);
+  pose.T_world_sensor.translation() = p;
+  pose.cell = cell;
+  if (keep_orientation(pose, config.seed + 0x9E3779B97F4A7C15ull * (pruning.orientations_sampled + 1), pruning))
+    poses.push_back(std::move(pose));
+}
+
 bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const {
   ++pruning.orientations_sampled;
   if (!reach) return true;

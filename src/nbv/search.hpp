@@ -43,6 +43,11 @@ struct Search {
   /// restarts seeded by `pose_seed`); fills pose.joints_rad.
   bool keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const;
 
+  /// A sampled rotation at candidate cell `cell` (centre p): snapped to the arm's reach, and
+  /// appended to `poses` if keep_orientation() accepts it (IK seeded by the sample count).
+  void add_pose(const Eigen::Vector3d& p, const Eigen::Matrix3d& R, std::size_t cell, Pruning& pruning,
+                std::vector<Pose>& poses) const;
+
   /// The targets each pose sees (U with the void scorer), on config.threads threads (the
   /// same on any count); counts the poses, rays, cells visited and poses seeing nothing.
   std::vector<std::size_t> score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
