@@ -14,6 +14,11 @@
 #  - one explore view on each paper replica at 2.5 cm (the fvx arm): median and max time per
 #    stage (render, registration, integration, frontiers/voids, search) over the views of a
 #    run, with and without pose noise (registration on);
+#  - replay: the noise-free explore sessions of both replicas replayed from their files,
+#    integration (octree, frontiers and voids) and search per view, median and max, beside
+#    the paper's; the 211 Redwood frames at 2.5 cm (FVX_REAL_DATA): frames per second of the
+#    replay step without the search against OctoMap's insertPointCloud in the same run, and
+#    of the whole fvx replay command (files read, --search-every 0);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
@@ -54,7 +59,31 @@ for scene in paper-setting-1 paper-setting-2; do
            | join(", "))'
   done
 done
+echo "== replay: the explore sessions above, from their files (the paper: integration 2.79-4.46 s, search 0.01-99.22 s per view)"
+for scene in paper-setting-1 paper-setting-2; do
+  "$build/src/fvx" replay "$bench_out/$scene" -o "$bench_out/$scene-replay" --format json 2>/dev/null |
+    jq -r --arg name "$scene" '
+      def med: sort | .[(length / 2 | floor)];
+      def r3: * 1000 | round / 1000;
+      [.results.rows[].timing_s] as $t
+      | [$t[] | .integration + .frontiers_voids] as $i | [$t[].search] as $s
+      | "\($name): \($t | length) views; integration median \($i | med | r3) s, max \($i | max | r3) s; search median \($s | med | r3) s, max \($s | max | r3) s"'
+done
 rm -rf "$bench_out"
+if [ -d "$redwood" ]; then
+  echo "== replay: 211 Redwood frames at 2.5 cm, 4 m"
+  "$build/tests/bench/bench_replay" "$redwood/trajectory_open3d_estimated.log" "$redwood"/depth/*.png
+  replay_out="$(mktemp -d)"
+  start=$(date +%s.%N)
+  "$build/src/fvx" replay --scans "$redwood/depth/*.png" --trajectory "$redwood/trajectory_open3d_estimated.log" \
+    --no-capmap --no-register --search-every 0 -o "$replay_out/out" --format csv > "$replay_out/table.csv" 2>/dev/null
+  end=$(date +%s.%N)
+  frames=$(($(wc -l < "$replay_out/table.csv") - 1))
+  awk -v n="$frames" -v a="$start" -v b="$end" 'BEGIN { printf "fvx replay command (files read, maps and reports written, no search): %d frames in %.1f s, %.2f frames/s\n", n, b - a, n / (b - a) }'
+  rm -rf "$replay_out"
+else
+  echo "== replay of Redwood: skipped ($redwood not found; set FVX_REAL_DATA)"
+fi
 youbot="$data/arms/youbot_arm.urdf"
 if [ -f "$youbot" ]; then
   echo "== capability maps" && "$build/tests/bench/bench_capmap" "$youbot"

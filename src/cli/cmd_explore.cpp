@@ -10,6 +10,7 @@
 #include "analysis_output.hpp"
 #include "command_table.hpp"
 #include "common_options.hpp"
+#include "table.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/core/pose.hpp"
@@ -38,8 +39,10 @@ const CommandSpec kExploreSpec = {
                  {"max-views", 0, "N", "stop after N scans (default 15)"},
                  {"pose-noise", 0, "M,DEG", "recorded poses after the first are off by Gaussian noise of sigma M "
                                             "metres and DEG degrees per axis; turns registration on"},
-                 {"far-voids-only", 0, nullptr, "U counts only void cells at the sensor's minimum depth or "
-                                                "beyond (fvx nbv --far-voids-only)"},
+                 {"near-voids", 0, nullptr, "count every void cell a ray crosses in U, and Algorithm 1's utility "
+                                            "from the frontier on (fvx nbv's default; default here: only what the "
+                                            "sensor can measure, beyond its minimum depth)"},
+                 {"far-voids-only", 0, nullptr, "only what the sensor can measure (the default; kept for scripts)"},
                  {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)"},
                  {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)"},
@@ -59,22 +62,12 @@ const CommandSpec kExploreSpec = {
 
 namespace {
 
-enum class Format { Markdown, Csv, Json };
-
-Format parse_format(const Args& args) {
-  const std::string f = args.has("format") ? args.get("format") : "markdown";
-  if (f == "markdown") return Format::Markdown;
-  if (f == "csv") return Format::Csv;
-  if (f == "json") return Format::Json;
-  throw UsageError("--format '" + f + "': expected markdown, csv or json");
-}
-
 /// One row of the per-view table: the paper's columns, then ground truth.
 struct Row {
   int view = 0;
   double scan_s = 0, registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
-  std::size_t void_cells = 0;
-  std::size_t predicted = 0;       ///< U of the chosen next view
+  std::size_t void_cells = 0;      ///< the paper's column: U of the chosen next view
+  std::size_t map_void_cells = 0;  ///< every void cell of the map in S
   double utility_dm3 = 0;          ///< U · R³ in dm³
   double known_fraction = 0;       ///< of the observable empty space of S
   std::size_t target_cells = 0;
@@ -83,56 +76,27 @@ struct Row {
   std::optional<double> registration_fitness_m;
 };
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 std::vector<std::string> cells(const Row& r) {
   return {std::to_string(r.view + 1),
-          fixed(r.integration_s, 3),
+          fixed(r.integration_s + r.frontiers_voids_s, 3),  // the paper's: octree, frontiers and voids
           fixed(r.search_s, 3),
           std::to_string(r.void_cells),
           fixed(r.utility_dm3, 2),
+          std::to_string(r.map_void_cells),
           fixed(100.0 * r.known_fraction, 1),
           r.target_seen ? "yes" : "no",
-          std::to_string(r.predicted),
           r.revealed ? std::to_string(*r.revealed) : "-"};
 }
 
-const std::vector<std::string> kHeader = {"view",      "integration_s", "search_s",    "void_cells", "utility_dm3",
-                                          "known_pct", "target_seen",   "predicted_U", "revealed"};
-
-void print_table(const std::vector<Row>& rows, Format format, std::ostream& out) {
-  if (format == Format::Csv) {
-    for (std::size_t i = 0; i < kHeader.size(); ++i) out << (i ? "," : "") << kHeader[i];
-    out << "\n";
-    for (const Row& r : rows) {
-      const auto c = cells(r);
-      for (std::size_t i = 0; i < c.size(); ++i) out << (i ? "," : "") << c[i];
-      out << "\n";
-    }
-    return;
-  }
-  out << "|";
-  for (const auto& h : kHeader) out << " " << h << " |";
-  out << "\n|";
-  for (std::size_t i = 0; i < kHeader.size(); ++i) out << "---|";
-  out << "\n";
-  for (const Row& r : rows) {
-    out << "|";
-    for (const auto& c : cells(r)) out << " " << c << " |";
-    out << "\n";
-  }
-}
+const std::vector<std::string> kHeader = {"view",           "integration_s", "search_s",    "void_cells", "utility_dm3",
+                                          "map_void_cells", "known_pct",     "target_seen", "revealed"};
 
 Json row_json(const Row& r) {
   Json j = {{"view", r.view + 1},
             {"timing_s", {{"render", r.scan_s}, {"registration", r.registration_s}, {"integration", r.integration_s},
                           {"frontiers_voids", r.frontiers_voids_s}, {"search", r.search_s}}},
             {"void_cells", r.void_cells},
-            {"predicted_void_cells", r.predicted},
+            {"map_void_cells", r.map_void_cells},
             {"utility_dm3", r.utility_dm3},
             {"known_fraction", r.known_fraction},
             {"target_cells_seen", r.target_cells},
@@ -202,7 +166,11 @@ int run_explore(const Args& args) {
   nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
   nc.view_bounds_m = parse_bounds(args, "view-bounds");
-  nc.count_near_void_cells = !args.has("far-voids-only");
+  if (args.has("near-voids") && args.has("far-voids-only"))
+    throw UsageError("--near-voids and --far-voids-only contradict each other: give one");
+  // A loop takes the views it picks, and a view nearer to a void than the sensor's minimum
+  // depth measures nothing of it (fvx nbv --far-voids-only).
+  nc.count_near_void_cells = args.has("near-voids");
   pc.clusters.seed = nc.seed;
   pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
@@ -320,6 +288,7 @@ int run_explore(const Args& args) {
   manifest.pose_noise_m = config.pose_noise_m;
   manifest.pose_noise_deg = config.pose_noise_deg;
   manifest.registration = pc.register_scans;
+  manifest.near_voids = nc.count_near_void_cells;
   session::write_depth_camera((dir / manifest.sensor).string(), nc.sensor);
   session::write_manifest(dir.string(), manifest);
 
@@ -343,9 +312,9 @@ int run_explore(const Args& args) {
         row.integration_s = step.timing.integration_s;
         row.frontiers_voids_s = step.timing.frontiers_voids_s;
         row.search_s = step.timing.search_s;
-        row.void_cells = step.analysis.void_cells.size();
-        row.predicted = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
-        row.utility_dm3 = frontier_voids::to_dm3(double(row.predicted) * R * R * R);
+        row.map_void_cells = step.analysis.void_cells.size();
+        row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
+        row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
         row.known_fraction = score.known_fraction(state.map);
         row.target_cells = score.target_cells_seen(state.map);
         row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
@@ -381,13 +350,13 @@ int run_explore(const Args& args) {
         write_report(report, (dir / mv.report).string());
         manifest.views.push_back(mv);
         session::write_manifest(dir.string(), manifest);
-        progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.void_cells) +
-                        " void cells, next view sees " + std::to_string(row.predicted) + ", " +
+        progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.map_void_cells) +
+                        " void cells, next view sees " + std::to_string(row.void_cells) + ", " +
                         fixed(100.0 * row.known_fraction, 1) + " % known" + (row.target_seen ? ", target seen" : ""));
       });
   progress.finish();
 
-  if (format == Format::Json) {
+  if (format == Format::json) {
     Json report = new_report("explore");
     report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"max_views", config.max_views},
                         {"resolution_m", R}, {"bounds_m", bounds_json(S)},
@@ -407,8 +376,10 @@ int run_explore(const Args& args) {
     report["warnings"] = Json::array();
     write_report(report, "");
   } else {
-    print_table(rows, format, std::cout);
-    if (format == Format::Markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
+    std::vector<std::vector<std::string>> table;
+    for (const Row& r : rows) table.push_back(cells(r));
+    print_table(kHeader, table, format, std::cout);
+    if (format == Format::markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
   }
   if (score.observable_target_cells() && *score.observable_target_cells() < sim::ExplorationScore::kTargetCellsSeen)
     std::cerr << "fvx explore: warning: from this base no pose of the arm sees the target (ground truth: "

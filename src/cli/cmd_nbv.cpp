@@ -41,8 +41,10 @@ const CommandSpec kNbvSpec = {
                  {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
                  {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
                  {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
-                 {"far-voids-only", 0, nullptr, "U counts only void cells at the sensor's minimum depth or "
-                                                "beyond (default: every void cell a ray crosses)"},
+                 {"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells at its minimum "
+                                                "depth or beyond, Algorithm 1 adds utility from that distance of the "
+                                                "frontier on (default: every void cell a ray crosses, utility from the "
+                                                "frontier on)"},
                  {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "

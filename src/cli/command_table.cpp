@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
       {kCapmapSpec, run_capmap},
       {kNbvSpec, run_nbv},
       {kExploreSpec, run_explore},
+      {kReplaySpec, run_replay},
       {kSimulateSpec, run_simulate},
   };
   return table;

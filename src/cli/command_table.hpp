@@ -36,5 +36,7 @@ extern const CommandSpec kSimulateSpec;
 extern const CommandSpec kExploreSpec;
 int run_simulate(const Args& args);
 int run_explore(const Args& args);
+extern const CommandSpec kReplaySpec;
+int run_replay(const Args& args);
 
 }  // namespace fvx::cli

@@ -107,15 +107,21 @@ void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& ou
   check_arm_options(args, command);
   out.T_world_base = args.has("base") ? parse_xyz_rpy_deg(args.get("base"), "--base") : Eigen::Isometry3d::Identity();
   if (!args.has("capmap")) return;
-  out.capability_map = capmap::CapabilityMap::load(args.get("capmap"));
+  load_arm_files(args.get("capmap"), args.has("arm") ? args.get("arm") : "", out.T_world_base, command, out);
+}
+
+void load_arm_files(const std::string& capmap_path, const std::string& urdf_path,
+                    const Eigen::Isometry3d& T_world_base, const std::string& command, ArmInputs& out) {
+  out.T_world_base = T_world_base;
+  out.capability_map = capmap::CapabilityMap::load(capmap_path);
   const capmap::CapabilityHeader& h = out.capability_map->header();
   if (h.shard_count != 1)
-    throw UsageError(command + ": " + args.get("capmap") + " is shard " + std::to_string(h.shard_index) + " of " +
+    throw UsageError(command + ": " + capmap_path + " is shard " + std::to_string(h.shard_index) + " of " +
                      std::to_string(h.shard_count) + "; merge the shards first (fvx capmap merge)");
-  if (args.has("arm")) {
-    out.arm = capmap::Arm::from_urdf(args.get("arm"), capmap::arm_config_of(h));
+  if (!urdf_path.empty()) {
+    out.arm = capmap::Arm::from_urdf(urdf_path, capmap::arm_config_of(h));
     if (out.arm->urdf_hash() != h.urdf_hash)
-      throw Error(command + ": " + args.get("capmap") + " was built from another URDF than " + args.get("arm") +
+      throw Error(command + ": " + capmap_path + " was built from another URDF than " + urdf_path +
                   " (hash " + h.urdf_hash + " vs " + out.arm->urdf_hash() + "); rebuild it with fvx capmap build");
   }
   out.reach = nbv::Reach{&*out.capability_map, out.T_world_base, out.arm ? &*out.arm : nullptr, {}};

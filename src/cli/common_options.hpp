@@ -51,6 +51,10 @@ void check_arm_options(const Args& args, const std::string& command);
 /// Call it before any long work.
 void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& out);
 Json capmap_json(const Args& args, const ArmInputs& in);
+/// The same from paths (a session's manifest): the capability map, the URDF (may be empty)
+/// and the base pose. FileError, or Error when the URDF is not the map's.
+void load_arm_files(const std::string& capmap_path, const std::string& urdf_path,
+                    const Eigen::Isometry3d& T_world_base, const std::string& command, ArmInputs& out);
 
 /// --noise none|kinect: the virtual Kinect's depth noise coefficient (σ = k·z², metres):
 /// 0, or 1.4e-3 (Khoshelham & Elberink 2012). UsageError for another model.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -117,6 +118,63 @@ void write_top_view_png(const std::string& path, double cell_m, const std::vecto
     cv::rectangle(image, cv::Rect(10, y, 16, 16), cv::Scalar(rgb[2], rgb[1], rgb[0]), cv::FILLED);
     cv::putText(image, layers[l].name + " (" + std::to_string(layers[l].centers_m.size()) + " cells)",
                 cv::Point(34, y + 14), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
+  }
+  write_path_atomically(path, [&](const std::string& temp) {
+    if (!cv::imwrite(temp, image)) throw FileError(path, "cannot write the PNG");
+  });
+}
+
+void write_line_plot_png(const std::string& path, const std::string& title, const std::string& x_label,
+                         const std::string& y_label, const std::vector<PlotSeries>& series, int width_px,
+                         int height_px) {
+  if (lowercase_extension(path) != ".png") throw FileError(path, "plots are written as .png");
+  std::size_t n = 0;
+  double top = 0.0;
+  for (const auto& s : series) {
+    n = std::max(n, s.values.size());
+    for (const double v : s.values)
+      if (std::isfinite(v)) top = std::max(top, v);
+  }
+  if (!(top > 0)) top = 1.0;
+  // A round upper limit: 1, 2 or 5 times a power of ten, above the largest value.
+  const double step10 = std::pow(10.0, std::floor(std::log10(top)));
+  const double upper = top <= step10 ? step10 : top <= 2 * step10 ? 2 * step10 : top <= 5 * step10 ? 5 * step10 : 10 * step10;
+  cv::Mat image(height_px, width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int left = 80, right = 20, top_px = 56 + 20 * int(series.size()), bottom = 50;
+  const int plot_w = width_px - left - right, plot_h = height_px - top_px - bottom;
+  const cv::Scalar ink(30, 30, 30), grid(225, 225, 225);
+  auto text = [&](const std::string& s, int x, int y, double scale = 0.45) {
+    cv::putText(image, s, cv::Point(x, y), cv::FONT_HERSHEY_SIMPLEX, scale, ink, 1, cv::LINE_AA);
+  };
+  auto px = [&](double x) { return left + (n > 1 ? int(std::lround((x - 1) * plot_w / double(n - 1))) : plot_w / 2); };
+  auto py = [&](double y) { return top_px + plot_h - int(std::lround(y / upper * plot_h)); };
+  text(title, left, 22, 0.55);
+  for (int t = 0; t <= 5; ++t) {  // horizontal grid lines and their values
+    const double y = upper * t / 5;
+    cv::line(image, cv::Point(left, py(y)), cv::Point(left + plot_w, py(y)), grid, 1);
+    char label[32];
+    std::snprintf(label, sizeof label, "%g", y);
+    text(label, 8, py(y) + 5, 0.4);
+  }
+  const std::size_t every = std::max<std::size_t>(1, (n + 14) / 15);  // at most ~15 x ticks
+  for (std::size_t x = 1; x <= n; x += every) text(std::to_string(x), px(double(x)) - 4, top_px + plot_h + 18, 0.4);
+  cv::rectangle(image, cv::Rect(left, top_px, plot_w, plot_h), ink, 1);
+  text(x_label, left + plot_w / 2 - 20, height_px - 10);
+  text(y_label, 8, top_px - 16, 0.4);
+  for (std::size_t s = 0; s < series.size(); ++s) {
+    const Rgb& c = series[s].color;
+    const cv::Scalar colour(c[2], c[1], c[0]);
+    const auto& v = series[s].values;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const cv::Point p(px(double(i + 1)), py(v[i]));
+      if (i > 0) cv::line(image, cv::Point(px(double(i)), py(v[i - 1])), p, colour, 2, cv::LINE_AA);
+      cv::circle(image, p, 3, colour, cv::FILLED, cv::LINE_AA);
+    }
+    const int y = 46 + 20 * int(s);
+    cv::rectangle(image, cv::Rect(left + 8, y - 10, 14, 10), colour, cv::FILLED);
+    char last[64] = "";
+    if (!v.empty()) std::snprintf(last, sizeof last, " (last %.2f)", v.back());
+    text(series[s].name + last, left + 28, y, 0.45);
   }
   write_path_atomically(path, [&](const std::string& temp) {
     if (!cv::imwrite(temp, image)) throw FileError(path, "cannot write the PNG");

@@ -92,8 +92,11 @@ Result select_frontier_void(Search& s, Result result) {
         s.config.progress("utility vectors (Algorithm 1), frontier-voids", done, total);
     };
   utility_config.sensor_range_m = s.config.sensor.depth_max_m;  // s_r
+  if (!s.config.count_near_void_cells) utility_config.min_range_m = s.config.sensor.depth_min_m;
   utility_config.threads = s.config.threads;
-  const utility::Field field = utility::accumulate(s.grid, s.a, utility_config);
+  // Void cells a taken view left hidden no longer count in U; they leave u_i too, or a void
+  // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
+  const utility::Field field = utility::accumulate(s.grid, s.visible_utility(), utility_config);
   result.utility_vectors = field.vectors;
   result.timing.accumulation_s = seconds_since(t0);
 

@@ -61,6 +61,19 @@ std::vector<std::uint8_t> Search::void_mask() const {
   return mask;
 }
 
+frontier_voids::Analysis Search::visible_utility() const {
+  frontier_voids::Analysis visible = a;
+  if (config.hidden_void_cells.empty()) return visible;
+  const double cell_m3 = std::pow(grid.resolution_m(), 3);
+  for (auto& fv : visible.frontier_voids) {
+    std::size_t cells = 0;
+    for (const map::VoxelKey& k : a.void_clusters[std::size_t(fv.void_id)].cells)
+      cells += grid.contains(k) && void_label[grid.index(k)] == fv.void_id;
+    fv.utility_m3 = double(cells) * cell_m3;
+  }
+  return visible;
+}
+
 Eigen::Matrix3d Search::snap_to_reach(const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) const {
   if (!reach) return R;
   const std::vector<Eigen::Vector3d> reachable = reach->capmap->reachable_directions(reach->T_world_base, p_world);

@@ -87,9 +87,14 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
 
   // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).
   t0 = Clock::now();
-  nbv::Config search = config.nbv;
-  search.hidden_void_cells = state.hidden_void_cells;
-  r.nbv = nbv::select(state.map, r.analysis, reach, search);
+  if (config.search) {
+    nbv::Config search = config.nbv;
+    search.hidden_void_cells = state.hidden_void_cells;
+    r.nbv = nbv::select(state.map, r.analysis, reach, search);
+    r.searched = true;
+  } else {
+    r.nbv.reason = "not searched";
+  }
   r.timing.search_s = seconds_since(t0);
   ++state.steps;
   return r;

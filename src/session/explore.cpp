@@ -8,6 +8,7 @@
 #include <random>
 
 #include "fvx/core/error.hpp"
+#include "fvx/session/replay.hpp"
 #include "fvx/session/session.hpp"
 
 namespace fvx::session {
@@ -15,10 +16,6 @@ namespace fvx::session {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A ranked view this close to a view already taken repeats it.
-constexpr double kSamePosition_m = 0.05;
-constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
 
 /// The prior a robot would record: the true pose off by Gaussian noise.
 Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T_true, double sigma_m, double sigma_deg, std::mt19937_64& rng) {
@@ -98,6 +95,9 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
                                       : T_true;
     const auto t0 = Clock::now();
     record.points_sensor = sensor(T_true, view);
+    // The loop integrates what the session records: PCD stores single precision, so that
+    // fvx replay of the session reads back exactly these points.
+    for (Eigen::Vector3d& p : record.points_sensor) p = p.cast<float>().cast<double>();
     record.scan_s = std::chrono::duration<double>(Clock::now() - t0).count();
 
     scan::Scan scan;
@@ -115,13 +115,7 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     const nbv::Result& next = record.step.nbv;
     visited.push_back(record.T_world_sensor_true);
     // The best ranked view not taken yet: one already taken revealed what it could.
-    const auto fresh = std::find_if(next.views.begin(), next.views.end(), [&](const nbv::View& v) {
-      return std::none_of(visited.begin(), visited.end(), [&](const Eigen::Isometry3d& T) {
-        return (T.translation() - v.T_world_sensor.translation()).norm() < kSamePosition_m &&
-               T.linear().col(2).dot(v.T_world_sensor.linear().col(2)) > std::cos(kSameDirection_rad);
-      });
-    });
-    if (fresh != next.views.end()) record.chosen = std::size_t(fresh - next.views.begin());
+    record.chosen = first_view_not_taken(next.views, visited);
     on_view(record, state);
     result.views = view + 1;
     if (next.views.empty()) {
@@ -129,14 +123,15 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
       result.utility_exhausted = true;
       return result;
     }
-    if (fresh == next.views.end()) {
+    if (!record.chosen) {
       result.end = "every ranked view repeats one already taken";
       return result;
     }
-    T_true = executed(*fresh, reach);
-    joints = fresh->joints_rad;
-    expected = fresh->seen_void_cells;
-    previous_prediction = fresh->void_cells_seen;
+    const nbv::View& fresh = next.views[*record.chosen];
+    T_true = executed(fresh, reach);
+    joints = fresh.joints_rad;
+    expected = fresh.seen_void_cells;
+    previous_prediction = fresh.void_cells_seen;
   }
   result.end = "the view limit (" + std::to_string(config.max_views) + ") was reached";
   return result;

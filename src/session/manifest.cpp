@@ -85,6 +85,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["seed"] = m.seed;
   j["pose_noise"] = {{"sigma_m", m.pose_noise_m}, {"sigma_deg", m.pose_noise_deg}};
   j["registration"] = m.registration;
+  j["near_voids"] = m.near_voids;
   Json views = Json::array();
   for (const ManifestView& v : m.views) {
     Json jv = {{"view", v.view}, {"scan", v.scan}, {"map", v.map}, {"report", v.report},
@@ -131,6 +132,10 @@ Manifest read_manifest(const std::string& dir) {
   m.pose_noise_m = r.number(r.at(j, "pose_noise"), "sigma_m");
   m.pose_noise_deg = r.number(r.at(j, "pose_noise"), "sigma_deg");
   m.registration = r.at(j, "registration").get<bool>();
+  if (j.contains("near_voids")) {
+    if (!j["near_voids"].is_boolean()) r.fail("'near_voids' must be true or false");
+    m.near_voids = j["near_voids"].get<bool>();
+  }
   const Json& views = r.at(j, "views");
   if (!views.is_array()) r.fail("'views' must be an array");
   for (const Json& jv : views) {

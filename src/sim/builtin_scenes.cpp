@@ -46,6 +46,20 @@ Mesh floor_slab() {
   return m;
 }
 
+/// The floor slab inside four walls 2 m high, 5 cm thick, at its edges: the lab the paper's
+/// settings stood in. A Kinect aimed over the boxes sees the far walls, so the air above them
+/// becomes known free and an arm may move there; over a bare floor the rays above the
+/// horizon return nothing and that air stays unknown.
+Mesh lab() {
+  Mesh m = floor_slab();
+  const float t = 0.05f, h = 2.0f;
+  m.add_box(Box(V(-0.6f - t, -1.6f, -0.05f), V(-0.6f, 1.6f, h)));
+  m.add_box(Box(V(2.0f, -1.6f, -0.05f), V(2.0f + t, 1.6f, h)));
+  m.add_box(Box(V(-0.6f - t, -1.6f - t, -0.05f), V(2.0f + t, -1.6f, h)));
+  m.add_box(Box(V(-0.6f - t, 1.6f, -0.05f), V(2.0f + t, 1.6f + t, h)));
+  return m;
+}
+
 const Face kSolid[6] = {{}, {}, {}, {}, {}, {}};
 
 Scene closed_box() {
@@ -108,7 +122,7 @@ Scene crates() {
 
 Scene paper_setting_1() {
   Scene s;
-  s.mesh = floor_slab();
+  s.mesh = lab();
   const float w = 0.01f;
   s.mesh.add_box(Box(V(0.52f, 0.27f, 0.0f), V(0.72f, 0.71f, 0.42f)));  // the computer (a tower)
   const Box box_a(V(0.63f, -0.47f, 0.0f), V(1.03f, -0.17f, 0.3f));
@@ -130,7 +144,7 @@ Scene paper_setting_1() {
 
 Scene paper_setting_2() {
   Scene s;
-  s.mesh = floor_slab();
+  s.mesh = lab();
   const float w = 0.01f;
   const Box large_1(V(0.71f, 0.13f, 0.0f), V(1.21f, 0.53f, 0.4f));
   const Box large_2(V(0.69f, -0.61f, 0.0f), V(1.14f, -0.16f, 0.35f));

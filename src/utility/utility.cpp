@@ -14,6 +14,8 @@ namespace fvx::utility {
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems;
   if (!(sensor_range_m > 0.0) || !std::isfinite(sensor_range_m)) problems.push_back("sensor_range_m must be > 0 m");
+  if (!(min_range_m >= 0.0) || !(min_range_m < sensor_range_m))
+    problems.push_back("min_range_m must be >= 0 m and below sensor_range_m");
   return problems;
 }
 
@@ -35,7 +37,7 @@ struct Partial {
 
 /// Algorithm 1 for one frontier-void: every corner, every frontier cell of its clusters.
 void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analysis& a, std::int32_t fv_index,
-                         double sensor_range_m, Partial& out) {
+                         double sensor_range_m, double min_range_m, Partial& out) {
   const auto& fv = a.frontier_voids[std::size_t(fv_index)];
   const double R = grid.resolution_m();
   const auto u = std::uint64_t(std::llround(fv.utility_m3 / (R * R * R)));
@@ -48,8 +50,13 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
         const Eigen::Vector3d dir = start - c;
         if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
         ++out.vectors;
+        bool far_enough = min_range_m <= 0.0;  // cells along a ray only get farther
         grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
           if (s != map::VoxelState::Free) return false;
+          if (!far_enough) {
+            far_enough = (grid.center_of(grid.key(index)) - start).squaredNorm() >= min_range_m * min_range_m;
+            if (!far_enough) return true;
+          }
           out.util_cells[index] += u;
           std::uint64_t& word = out.touched_bits[index >> 6];
           const std::uint64_t bit = std::uint64_t(1) << (index & 63);
@@ -82,7 +89,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   // order meets a cell's largest contributors first, and the merge keeps this order.
   std::vector<std::int32_t> order;
   for (std::size_t i = 0; i < a.frontier_voids.size(); ++i)
-    if (!a.frontier_voids[i].enclosed()) order.push_back(std::int32_t(i));
+    if (!a.frontier_voids[i].enclosed() && a.frontier_voids[i].utility_m3 > 0) order.push_back(std::int32_t(i));
   std::stable_sort(order.begin(), order.end(), [&](std::int32_t l, std::int32_t r) {
     return a.frontier_voids[std::size_t(l)].utility_m3 > a.frontier_voids[std::size_t(r)].utility_m3;
   });
@@ -102,7 +109,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
     part.touched_bits.assign(grid.cell_count() / 64 + 1, 0);
     for (std::size_t i = next++; i < order.size(); i = next++) {
       if (report && config.progress) config.progress(i, order.size());
-      trace_frontier_void(grid, a, order[i], config.sensor_range_m, part);
+      trace_frontier_void(grid, a, order[i], config.sensor_range_m, config.min_range_m, part);
     }
   };
   std::vector<std::thread> pool;

@@ -35,6 +35,18 @@ struct PictureLayer {
 void write_top_view_png(const std::string& path, double cell_m, const std::vector<PictureLayer>& layers,
                         int width_px = 900);
 
+/// One line of a plot: a value per x = 1, 2, 3, …
+struct PlotSeries {
+  std::string name;
+  Rgb color;
+  std::vector<double> values;
+};
+/// Lines over x = 1..n on shared axes from 0 to the largest value, with a title, axis labels,
+/// tick values and a legend naming each line and its last value; written atomically.
+void write_line_plot_png(const std::string& path, const std::string& title, const std::string& x_label,
+                         const std::string& y_label, const std::vector<PlotSeries>& series, int width_px = 900,
+                         int height_px = 520);
+
 /// A colour per cluster id, distinct for neighbours, stable across runs.
 Rgb cluster_color(int id);
 

@@ -69,8 +69,10 @@ struct Config {
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
   int random_tries = 1000;            ///< random: valid poses drawn at most, until one sees a void cell
   /// Count void cells nearer than the sensor's minimum depth in U (ARCHITECTURE.md §3: every
-  /// void cell crossed). false: only cells at depth_min_m or beyond count — a view that close
-  /// to a hidden surface records nothing, so an exploration loop does not chase them.
+  /// void cell crossed), and let Algorithm 1 add utility from the frontier cell on. false:
+  /// only cells at depth_min_m or beyond count, and a utility vector adds utility only from
+  /// depth_min_m beyond its frontier cell (utility::Config::min_range_m) — a view that close
+  /// to a hidden surface records nothing, so an exploration loop does not chase it.
   bool count_near_void_cells = true;
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts

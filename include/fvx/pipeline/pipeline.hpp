@@ -30,6 +30,9 @@ struct Config {
   registration::Config registration;
   voids::ClusterConfig clusters;                   ///< Eq. 2 region growing
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
+  /// Step 7, the next-best-view search; false: the step ends with frontiers and voids (its
+  /// nbv result is empty, with the reason "not searched").
+  bool search = true;
   std::vector<std::string> validate() const;
 };
 
@@ -59,6 +62,7 @@ struct StepResult {
   std::size_t expected_revealed = 0;                 ///< of the expected void cells, now known
   std::size_t expected_hidden = 0;                   ///< … still unknown (added to State::hidden_void_cells)
   frontier_voids::Analysis analysis;                 ///< after the scan
+  bool searched = false;                             ///< step 7 ran (Config::search)
   nbv::Result nbv;                                   ///< the next best views
   Timing timing;
 };

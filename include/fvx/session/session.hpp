@@ -47,6 +47,9 @@ struct Manifest {
   std::uint64_t seed = 1;
   double pose_noise_m = 0.0, pose_noise_deg = 0.0;   ///< σ of the recorded priors' error
   bool registration = false;
+  /// The planner's U counted void cells nearer than the sensor's minimum depth
+  /// (nbv::Config::count_near_void_cells; fvx explore --near-voids). Absent: false.
+  bool near_voids = false;
   std::vector<ManifestView> views;
 };
 

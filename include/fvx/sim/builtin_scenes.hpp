@@ -4,7 +4,8 @@
 /// Coordinates: x forward from the robot base at the origin, y left, z up, floor at z = 0.
 /// Everything is built from closed, non-overlapping axis-aligned slabs, as GroundTruth
 /// assumes. Replicas of the paper's settings (§V-B) are sized for its 5-DOF arm, whose
-/// workspace has a radius of 1 m.
+/// workspace has a radius of 1 m, and stand in a lab (walls at the floor's edges) as the
+/// paper's did.
 #include <string>
 #include <vector>
 

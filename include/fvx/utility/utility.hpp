@@ -20,6 +20,11 @@ namespace fvx::utility {
 
 struct Config {
   double sensor_range_m = 4.0;  ///< s_r: the longest a utility ray goes, metres (Kinect v1: 4)
+  /// A ray adds utility only to cells at least this far from its frontier cell, metres (it
+  /// is still traced, and stopped, from the frontier on). 0: the paper's Algorithm 1, every
+  /// cell from the frontier on. The sensor's minimum depth: a viewpoint nearer to the
+  /// frontier than that measures nothing behind it.
+  double min_range_m = 0.0;
   unsigned threads = 0;         ///< 0: all cores; the field is the same on any count
   /// Called on the calling thread now and then: frontier-voids traced so far, and in all.
   std::function<void(std::size_t done, std::size_t total)> progress;

@@ -213,6 +213,31 @@ TEST(Nbv, WithoutOpenVoidsTheAnswerIsEmptyWithAReason) {
   EXPECT_NE(r.reason.find("enclosed"), std::string::npos) << r.reason;
 }
 
+// Hidden void cells (a taken view looked at them and they stayed unknown) leave u_i as well
+// as U: a void hidden whole draws no utility vector, the others draw the same as before.
+TEST(Nbv, HiddenVoidCellsLeaveAlgorithmOnesUtility) {
+  const ClosedBox& box = closed_box();
+  Config config = coarse();
+  const Result all_visible = select(box.map, box.analysis, std::nullopt, config);
+  ASSERT_GT(all_visible.utility_vectors, 0u);
+  const auto largest = std::max_element(box.analysis.frontier_voids.begin(), box.analysis.frontier_voids.end(),
+                                        [](const auto& l, const auto& r) { return l.utility_m3 < r.utility_m3; });
+  ASSERT_FALSE(largest->enclosed());
+  std::size_t its_vectors = 0;  // Algorithm 1: one vector per corner and frontier cell
+  for (const int id : largest->frontier_ids) its_vectors += 7 * box.analysis.frontier_clusters[std::size_t(id)].cells.size();
+  config.hidden_void_cells = box.analysis.void_clusters[std::size_t(largest->void_id)].cells;
+  const Result one_hidden = select(box.map, box.analysis, std::nullopt, config);
+  EXPECT_EQ(one_hidden.utility_vectors, all_visible.utility_vectors - its_vectors);
+  config.hidden_void_cells.clear();
+  for (const auto& fv : box.analysis.frontier_voids)
+    if (!fv.enclosed())
+      for (const auto& k : box.analysis.void_clusters[std::size_t(fv.void_id)].cells) config.hidden_void_cells.push_back(k);
+  std::sort(config.hidden_void_cells.begin(), config.hidden_void_cells.end());
+  const Result all_hidden = select(box.map, box.analysis, std::nullopt, config);
+  EXPECT_EQ(all_hidden.utility_vectors, 0u);
+  EXPECT_TRUE(all_hidden.views.empty());
+}
+
 TEST(Nbv, TheSensorStaysInsideTheViewBounds) {
   const ClosedBox& box = closed_box();
   Config config = coarse();

@@ -47,6 +47,18 @@ TEST(Utility, RaysLeaveTheVoidThroughTheFrontierAndStopAtTheFirstNonFreeCell) {
   config.sensor_range_m = 0.44;  // s_r cuts the rays: cell k is entered at (k − 0.5)·0.1 m, so x = 0…4
   const Field short_range = accumulate(grid, a, config);
   EXPECT_EQ(short_range.cells, 5u);
+
+  // The sensor's minimum depth: only cells whose centre is at least 0.35 m from the frontier
+  // cell's (x ≥ 4) gain utility, the same amount; the ray still stops at the wall.
+  config.sensor_range_m = 4.0;
+  config.min_range_m = 0.35;
+  const Field far = accumulate(grid, a, config);
+  for (int x = 0; x < 10; ++x)
+    EXPECT_NEAR(far.util_m3[grid.index(key(x, 0, 0))], x >= 4 ? 7 * 0.001 : 0.0, 1e-12) << "x = " << x;
+  EXPECT_EQ(far.cells, 6u);
+  EXPECT_EQ(far.vectors, 7u);
+  config.min_range_m = 4.0;  // not below s_r
+  EXPECT_FALSE(config.validate().empty());
 }
 
 // Within the box's column (its footprint, floor to 1.2 m) the only void is the interior. Its

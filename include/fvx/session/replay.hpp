@@ -1,0 +1,74 @@
+#pragma once
+/// \file
+/// Replay (paper §V, offline): a recorded sequence of scans run through the same step as the
+/// closed loop — register, integrate, frontiers and voids, next best view — one call of
+/// pipeline::run_step() per scan, in order. The sensor went where the recording says, not
+/// where the planner would have sent it; each view reports both.
+#include <Eigen/Geometry>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fvx/pipeline/pipeline.hpp"
+#include "fvx/scan/scan.hpp"
+
+namespace fvx::session {
+
+/// Two sensor poses are the same view within 5 cm and 10° between their optical axes (the
+/// explore loop passes over ranked views this close to one already taken).
+bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+/// The best ranked view (index into `views`) that is not the same view as one in `taken`.
+std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
+                                                const std::vector<Eigen::Isometry3d>& taken);
+
+/// One recorded scan. `load` reads it when its turn comes, so that a missing or corrupt file
+/// stops the replay there, after the views before it are done.
+struct RecordedScan {
+  std::string name;                                  ///< the file, as errors name it
+  std::function<scan::Scan()> load;                  ///< sensor-frame points and the pose prior
+  /// Simulated sessions: where the sensor really was (what "taken" means for the planner's
+  /// choice, as in the explore loop). Empty: the pose the scan was integrated at.
+  std::optional<Eigen::Isometry3d> T_world_sensor_true;
+};
+
+struct ReplayConfig {
+  pipeline::Config pipeline;  ///< the map, registration and the planner; nbv.seed + view per view
+  int last_view = -1;         ///< replay views 0..last_view (−1: all)
+  /// Search the next best view after every search_every-th view (1: each, 0: never; the
+  /// others end with frontiers and voids, as pipeline::Config::search = false).
+  int search_every = 1;
+  std::vector<std::string> validate() const;
+};
+
+struct ReplayView {
+  int view = 0;
+  std::string name;
+  pipeline::StepResult step;
+  /// The view of step.nbv.views the planner would take next (the explore loop's choice: the
+  /// best ranked one not taken already); empty when no view sees a void cell.
+  std::optional<std::size_t> chosen;
+  /// This scan's logged pose against the view the planner chose at the previous view:
+  /// distance between the positions, angle between the optical axes; empty for the first
+  /// view or when the previous view had no choice.
+  std::optional<double> from_choice_m, from_choice_deg;
+  /// This scan was taken at the previous choice (same_view): the choice's void cells it left
+  /// unknown became hidden, as in the explore loop.
+  bool at_choice = false;
+  /// Of the previous view's void cells, how many this scan made known (0 for the first view).
+  std::size_t revealed_void_cells = 0;
+  double known_m3 = 0.0;  ///< known (free or occupied) volume inside the search space
+  double void_m3 = 0.0;   ///< void volume (step.analysis.void_cells · R³)
+};
+
+/// Runs the scans in order; `on_view` gets each view and the state right after it. A scan that
+/// fails to load throws Error naming the view and the file (on_view has had every view before
+/// it).
+void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Reach>& reach, const ReplayConfig& config,
+            const std::function<void(const ReplayView&, const pipeline::State&)>& on_view);
+
+/// The known volume of `map` inside `box`, m³ (leaves clipped to the box).
+double known_volume_m3(const map::OccupancyMap& map, const Eigen::AlignedBox3d& box);
+
+}  // namespace fvx::session

@@ -1,0 +1,405 @@
+// fvx replay — a recorded session through the closed loop's step, offline: per scan register,
+// integrate, frontiers and voids, next best view; the paper's per-view table (Tables I and II),
+// per-view maps and reports, and a plot of the known and void volume.
+#include <glob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "analysis_output.hpp"
+#include "command_table.hpp"
+#include "common_options.hpp"
+#include "fvx/core/error.hpp"
+#include "fvx/io/visual.hpp"
+#include "fvx/scan/load.hpp"
+#include "fvx/session/replay.hpp"
+#include "fvx/session/session.hpp"
+#include "nbv_output.hpp"
+#include "table.hpp"
+
+namespace fvx::cli {
+
+const CommandSpec kReplaySpec = {
+    "replay",
+    "SESSION/ -o OUT/ | --tum DIR -o OUT/ | --scans 'GLOB' --trajectory FILE -o OUT/ [options]",
+    "a recorded session offline: per scan integrate, voids, next best view; the paper's per-view table",
+    options({{
+                 {"output", 'o', "DIR", "per-view maps, reports and the volume plot (must not exist or be empty)"},
+                 {"tum", 0, "DIR", "a TUM RGB-D style folder: depth/ and groundtruth.txt (or --associations)"},
+                 {"associations", 0, "FILE", "with --tum: lines 'stamp rgb/… stamp depth/…' (or 'stamp depth/…') "
+                                             "naming the depth images, relative to DIR"},
+                 {"scans", 0, "GLOB", "the scans (PCD, PLY, depth images) in file-name order; quote the pattern"},
+                 {"trajectory", 't', "FILE", "pose priors for --scans or --tum: TUM (stamp tx ty tz qx qy qz qw, "
+                                             "or without stamp) or Redwood .log"},
+                 {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, seconds "
+                                           "(default 0.02)"},
+                 {"from", 0, "N", "first view reported, 1-based (default 1; earlier views are still replayed)"},
+                 {"to", 0, "N", "last view replayed, 1-based (default: all)"},
+                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
+                 {"search-every", 0, "N", "search the next best view after every N-th view only (default 1; 0: "
+                                          "never, the table then holds integration alone)"},
+             },
+             arm_options(),
+             {
+                 {"planner", 0, "NAME", "frontier-void (default, or the session's), frontier, random or exhaustive"},
+                 {"register", 0, nullptr, "register every scan to the map (default for --tum and --scans; "
+                                          "a session: as recorded)"},
+                 {"no-register", 0, nullptr, "integrate scans at their logged poses"},
+                 {"near-voids", 0, nullptr, "U counts every void cell a ray crosses (as fvx nbv; default, as fvx "
+                                            "explore: only what the sensor can measure)"},
+                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, or the session's)"},
+                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the session's, else the "
+                                                    "known cells' box)"},
+                 {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
+                                                         "session's, else the known cells' box)"},
+                 {"seed", 0, "N", "seed of the planner (default 1, or the session's)"},
+                 {"threads", 0, "N", "threads for the search (default 0: all cores)"},
+             },
+             depth_camera_options(),
+             {
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
+                 {"help", 'h', nullptr, "show this help"},
+             }})};
+
+namespace {
+
+/// One row of the table: the paper's columns, then what a recording adds.
+struct Row {
+  int view = 0;
+  std::string scan;
+  double registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
+  bool searched = true;        ///< --search-every skipped the search after this view
+  std::size_t void_cells = 0;  ///< the paper's column: U of the chosen next view
+  double utility_dm3 = 0;      ///< void_cells · R³ in dm³
+  std::optional<double> fitness_m;
+  std::optional<double> next_m, next_deg;  ///< the next logged pose against the chosen view
+  std::optional<std::size_t> revealed;     ///< of this view's void cells, known after the next scan
+  std::size_t map_void_cells = 0;
+  double known_dm3 = 0, void_dm3 = 0;
+};
+
+const std::vector<std::string> kHeader = {"view",      "integration_s", "search_s",   "void_cells",     "utility_dm3",
+                                          "fitness_m", "next_m",        "next_deg",   "revealed",       "map_void_cells",
+                                          "known_dm3"};
+
+std::vector<std::string> cells(const Row& r) {
+  auto maybe = [](const std::optional<double>& v, int digits) { return v ? fixed(*v, digits) : std::string("-"); };
+  return {std::to_string(r.view + 1),
+          fixed(r.integration_s + r.frontiers_voids_s, 3),  // the paper's: octree, frontiers and voids
+          r.searched ? fixed(r.search_s, 3) : "-",
+          r.searched ? std::to_string(r.void_cells) : "-",
+          r.searched ? fixed(r.utility_dm3, 2) : "-",
+          maybe(r.fitness_m, 4),
+          maybe(r.next_m, 3),
+          maybe(r.next_deg, 1),
+          r.revealed ? std::to_string(*r.revealed) : "-",
+          std::to_string(r.map_void_cells),
+          fixed(r.known_dm3, 1)};
+}
+
+Json row_json(const Row& r) {
+  auto opt = [](const auto& v) { return v ? Json(*v) : Json(nullptr); };
+  return {{"view", r.view + 1},
+          {"scan", r.scan},
+          {"timing_s", {{"registration", r.registration_s}, {"integration", r.integration_s},
+                        {"frontiers_voids", r.frontiers_voids_s},
+                        {"search", r.searched ? Json(r.search_s) : Json(nullptr)}}},
+          {"void_cells", r.searched ? Json(r.void_cells) : Json(nullptr)},
+          {"utility_dm3", r.searched ? Json(r.utility_dm3) : Json(nullptr)},
+          {"registration_fitness_m", opt(r.fitness_m)},
+          {"next_distance_m", opt(r.next_m)},
+          {"next_angle_deg", opt(r.next_deg)},
+          {"revealed_void_cells", opt(r.revealed)},
+          {"map_void_cells", r.map_void_cells},
+          {"known_dm3", r.known_dm3},
+          {"void_dm3", r.void_dm3}};
+}
+
+std::string view_name(int view, const char* ext) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "view%03d%s", view, ext);
+  return buf;
+}
+
+/// A path from a manifest: as written (relative to where explore ran), else relative to the
+/// session directory.
+std::string resolve(const std::string& path, const std::filesystem::path& session) {
+  if (path.empty() || std::filesystem::exists(path)) return path;
+  const std::filesystem::path beside = session / path;
+  return std::filesystem::exists(beside) ? beside.string() : path;
+}
+
+std::vector<std::string> expand_glob(const std::string& pattern) {
+  glob_t g{};
+  const int rc = ::glob(pattern.c_str(), 0, nullptr, &g);
+  std::vector<std::string> paths;
+  if (rc == 0)
+    for (std::size_t i = 0; i < g.gl_pathc; ++i) paths.emplace_back(g.gl_pathv[i]);
+  globfree(&g);
+  if (paths.empty()) throw UsageError("fvx replay: --scans '" + pattern + "' matches no file");
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+/// The depth images of a TUM RGB-D folder: from the associations file (the last column that
+/// names a file under depth/, or the second column), else every file in depth/ by name.
+std::vector<std::string> tum_depth_images(const std::filesystem::path& dir, const std::string& associations) {
+  std::vector<std::string> paths;
+  if (!associations.empty()) {
+    std::ifstream in(associations);
+    if (!in) throw FileError(associations, "cannot open the associations file");
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream fields(line);
+      std::vector<std::string> f;
+      for (std::string w; fields >> w;) f.push_back(w);
+      std::string depth;
+      for (const auto& w : f)
+        if (w.rfind("depth/", 0) == 0) depth = w;
+      if (depth.empty() && f.size() >= 2) depth = f[1];
+      if (depth.empty())
+        throw FileError(associations + ":" + std::to_string(number), "expected 'stamp depth/FILE' or 'stamp rgb/FILE stamp depth/FILE'");
+      paths.push_back((dir / depth).string());
+    }
+  } else {
+    if (!std::filesystem::is_directory(dir / "depth"))
+      throw FileError(dir.string(), "not a TUM RGB-D folder: no depth/ inside");
+    for (const auto& e : std::filesystem::directory_iterator(dir / "depth"))
+      if (e.is_regular_file()) paths.push_back(e.path().string());
+    std::sort(paths.begin(), paths.end());
+  }
+  if (paths.empty()) throw FileError(dir.string(), "no depth image to replay");
+  return paths;
+}
+
+}  // namespace
+
+int run_replay(const Args& args) {
+  const int sources = int(args.positional.size() == 1) + int(args.has("tum")) + int(args.has("scans"));
+  if (sources != 1 || args.positional.size() > 1)
+    throw UsageError("fvx replay: give one input: a session directory, --tum DIR or --scans GLOB");
+  if (!args.has("output")) throw UsageError("fvx replay: -o/--output DIR is required");
+  if (args.has("register") && args.has("no-register"))
+    throw UsageError("fvx replay: --register and --no-register contradict each other");
+  if (args.has("associations") && !args.has("tum")) throw UsageError("fvx replay: --associations goes with --tum");
+  if (args.has("scans") && !args.has("trajectory"))
+    throw UsageError("fvx replay: --scans needs --trajectory (the logged poses)");
+  const bool session_input = args.positional.size() == 1;
+  if (session_input && args.has("trajectory"))
+    throw UsageError("fvx replay: a session has its poses in its manifest; --trajectory goes with --scans or --tum");
+  if (args.has("capmap") || args.has("no-capmap") || !session_input) check_arm_options(args, "fvx replay");
+  if (session_input && !args.has("capmap") && (args.has("base") || args.has("arm")))
+    throw UsageError("fvx replay: --base and --arm go with --capmap (a session's own arm needs neither)");
+  const Format format = parse_format(args);
+  const int from = int(args.integer("from", 1, 1, 1000000));
+  const int to = int(args.integer("to", 0, 1, 1000000));
+  if (args.has("to") && to < from) throw UsageError("fvx replay: --to " + std::to_string(to) + " is before --from");
+  const std::filesystem::path dir = args.get("output");
+  if (std::filesystem::exists(dir) &&
+      (!std::filesystem::is_directory(dir) || !std::filesystem::is_empty(dir)))
+    throw UsageError("fvx replay: -o " + dir.string() + " exists and is not an empty folder; nothing is overwritten");
+
+  session::ReplayConfig config;
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  ArmInputs arm_inputs;
+  std::vector<session::RecordedScan> scans;
+  std::string source_json;
+  if (session_input) {
+    // A session: everything as recorded, flags on top.
+    const std::filesystem::path session = args.positional[0];
+    const session::Manifest m = session::read_manifest(session.string());
+    if (m.views.empty()) throw Error("fvx replay: " + session.string() + ": the session holds no view");
+    source_json = session.string();
+    nc.sensor = io::read_depth_camera((session / m.sensor).string());
+    if (args.has("sensor") || args.has("intrinsics") || args.has("depth-min") || args.has("depth-max"))
+      nc.sensor = parse_depth_camera(args, "replay");
+    pc.resolution_m = m.resolution_m;
+    pc.bounds_m = m.search_space_m;
+    nc.view_bounds_m = m.view_bounds_m;
+    nc.strategy = nbv::parse_strategy(m.planner);
+    nc.seed = m.seed;
+    pc.register_scans = m.registration;
+    nc.count_near_void_cells = m.near_voids;
+    if (args.has("no-capmap")) {
+      load_arm_inputs(args, "fvx replay", arm_inputs);
+    } else if (args.has("capmap")) {
+      load_arm_inputs(args, "fvx replay", arm_inputs);
+    } else if (!m.capmap.empty()) {
+      load_arm_files(resolve(m.capmap, session), resolve(m.arm, session), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
+                     "fvx replay", arm_inputs);
+    }
+    for (const session::ManifestView& v : m.views) {
+      session::RecordedScan r;
+      r.name = (session / v.scan).string();
+      r.T_world_sensor_true = v.T_world_sensor_true;
+      const Eigen::Isometry3d prior = v.T_world_sensor_prior;
+      r.load = [path = r.name, prior]() {
+        scan::LoadConfig load;
+        scan::ScanSource source{path, prior, scan::PoseSource::Trajectory};
+        std::vector<std::string> warnings;
+        return scan::load_scan(source, load, warnings);
+      };
+      scans.push_back(std::move(r));
+    }
+  } else {
+    // Recorded scans with a trajectory (a TUM folder or a list of files).
+    nc.sensor = parse_depth_camera(args, "replay");
+    std::vector<std::string> paths;
+    scan::LoadConfig load;
+    if (args.has("tum")) {
+      const std::filesystem::path tum = args.get("tum");
+      paths = tum_depth_images(tum, args.has("associations") ? args.get("associations") : "");
+      load.trajectory_path = args.has("trajectory") ? args.get("trajectory") : (tum / "groundtruth.txt").string();
+      if (!std::filesystem::exists(load.trajectory_path))
+        throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
+      // TUM depth images store 5000 units per metre.
+      if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;
+      source_json = tum.string();
+    } else {
+      paths = expand_glob(args.get("scans"));
+      load.trajectory_path = args.get("trajectory");
+      source_json = args.get("scans");
+    }
+    load.intrinsics = nc.sensor.intrinsics;
+    load.max_time_diff_s = args.number("max-time-diff", 0.02, 0.0, 1e6);
+    const scan::ScanPlan plan = scan::plan_scans(paths, load);
+    for (const auto& warning : plan.warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
+    for (const scan::ScanSource& source : plan.scans) {
+      session::RecordedScan r;
+      r.name = source.path;
+      r.load = [source, load]() {
+        std::vector<std::string> warnings;
+        return scan::load_scan(source, load, warnings);
+      };
+      scans.push_back(std::move(r));
+    }
+    pc.register_scans = !args.has("no-register");
+    nc.strategy = nbv::Strategy::FrontierVoid;
+    nc.count_near_void_cells = false;  // as fvx explore: only what the sensor can measure
+    load_arm_inputs(args, "fvx replay", arm_inputs);
+  }
+  // Flags over the recording.
+  if (args.has("planner")) nc.strategy = nbv::parse_strategy(args.get("planner"));
+  if (args.has("register")) pc.register_scans = true;
+  if (args.has("no-register")) pc.register_scans = false;
+  if (args.has("near-voids")) nc.count_near_void_cells = true;
+  if (args.has("resolution")) pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
+  if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
+  if (args.has("seed")) nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  pc.clusters.seed = nc.seed;
+  pc.filter.depth_min_m = nc.sensor.depth_min_m;
+  pc.filter.depth_max_m = nc.sensor.depth_max_m;
+  if (nc.strategy == nbv::Strategy::Exhaustive && !arm_inputs.reach)
+    throw UsageError("fvx replay: --planner exhaustive enumerates a capability map: give --capmap");
+  if (args.has("to")) config.last_view = to - 1;
+  config.search_every = int(args.integer("search-every", 1, 0, 1000000));
+  if (from > int(scans.size()))
+    throw UsageError("fvx replay: --from " + std::to_string(from) + ": the recording has " +
+                     std::to_string(scans.size()) + " views");
+  {
+    const auto problems = config.validate();
+    if (!problems.empty()) throw UsageError("fvx replay: " + problems.front());
+  }
+
+  std::filesystem::create_directories(dir / "maps");
+  std::filesystem::create_directories(dir / "reports");
+  const double R = pc.resolution_m;
+  const std::vector<std::string> joint_names =
+      arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
+  const std::size_t total = config.last_view < 0 ? scans.size() : std::min<std::size_t>(scans.size(), to);
+  Progress progress(args.has("progress"));
+  std::vector<Row> rows;  // every replayed view; the reported ones are view + 1 >= from
+  std::string failure;
+  try {
+    session::replay(scans, arm_inputs.reach, config, [&](const session::ReplayView& v, const pipeline::State& state) {
+      const pipeline::StepResult& step = v.step;
+      if (!rows.empty()) {
+        rows.back().revealed = v.revealed_void_cells;
+        rows.back().next_m = v.from_choice_m;
+        rows.back().next_deg = v.from_choice_deg;
+      }
+      Row row;
+      row.view = v.view;
+      row.scan = v.name;
+      row.registration_s = step.timing.registration_s;
+      row.integration_s = step.timing.integration_s;
+      row.frontiers_voids_s = step.timing.frontiers_voids_s;
+      row.search_s = step.timing.search_s;
+      row.searched = step.searched;
+      row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
+      row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
+      if (step.registration) row.fitness_m = step.registration->fitness_rmse_m;
+      row.map_void_cells = step.analysis.void_cells.size();
+      row.known_dm3 = frontier_voids::to_dm3(v.known_m3);
+      row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
+      rows.push_back(row);
+      if (v.view + 1 >= from) {
+        state.map.save((dir / "maps" / view_name(v.view, ".ot")).string());
+        Json report = new_report("replay");
+        report["inputs"] = {{"source", source_json}, {"view", v.view + 1}, {"scan", v.name}};
+        Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
+        results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
+        results["chosen_rank"] = v.chosen ? Json(*v.chosen + 1) : Json(nullptr);
+        results["row"] = row_json(row);
+        report["results"] = results;
+        report["warnings"] = step.analysis.warnings;
+        write_report(report, (dir / "reports" / view_name(v.view, ".json")).string());
+      }
+      progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
+                      std::to_string(row.map_void_cells) + " void cells, best view sees " +
+                      std::to_string(row.void_cells));
+    });
+  } catch (const Error& e) {
+    failure = e.what();
+  }
+  progress.finish();
+
+  // What was replayed is reported even when a scan failed: its views' files are complete.
+  std::vector<Row> shown;
+  for (const Row& r : rows)
+    if (r.view + 1 >= from) shown.push_back(r);
+  if (!shown.empty()) {
+    std::vector<double> known, voids;
+    for (const Row& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
+    io::write_line_plot_png((dir / "volumes.png").string(),
+                            "fvx replay: known and void volume in the search space after each view", "view",
+                            "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
+  }
+  if (format == Format::json) {
+    Json report = new_report("replay");
+    report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"resolution_m", R},
+                        {"bounds_m", pc.bounds_m ? bounds_json(*pc.bounds_m) : Json(nullptr)},
+                        {"registration", pc.register_scans}, {"near_voids", nc.count_near_void_cells},
+                        {"seed", nc.seed}, {"sensor", depth_camera_json(nc.sensor)}};
+    report["inputs"] = {{"source", source_json}, {"views", scans.size()},
+                        {"capmap_urdf_hash", arm_inputs.capability_map
+                                                 ? Json(arm_inputs.capability_map->header().urdf_hash)
+                                                 : Json(nullptr)}};
+    Json jrows = Json::array();
+    for (const Row& r : shown) jrows.push_back(row_json(r));
+    report["results"] = {{"output", dir.string()}, {"views", rows.size()}, {"rows", jrows},
+                         {"error", failure.empty() ? Json(nullptr) : Json(failure)}};
+    report["warnings"] = Json::array();
+    write_report(report, "");
+  } else {
+    std::vector<std::vector<std::string>> table;
+    for (const Row& r : shown) table.push_back(cells(r));
+    print_table(kHeader, table, format, std::cout);
+  }
+  if (!failure.empty()) throw Error("fvx replay: " + failure + "; the " + std::to_string(rows.size()) +
+                                    " views before it are in " + dir.string());
+  std::cerr << "fvx replay: " << rows.size() << " views; maps, reports and volumes.png in " << dir.string() << "\n";
+  return 0;
+}
+
+}  // namespace fvx::cli

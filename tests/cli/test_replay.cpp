@@ -1,0 +1,332 @@
+// fvx replay as users run it: a session fvx explore recorded replays to the same table and the
+// same chosen views; twice gives the same outputs; a broken scan stops the replay naming its
+// view with the earlier views' outputs intact; TUM folders and scan lists with trajectories;
+// real recorded sequences run to the end.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "fvx/io/depth_image.hpp"
+#include "fvx/map/occupancy_map.hpp"
+#include "fvx/session/session.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/viewpoints/fov.hpp"
+
+namespace fvx::test {
+namespace {
+
+using nlohmann::json;
+
+const std::string kArm = " --capmap '" + source("data/arms/fvx-arm.fcm") + "' --base 0.2,0,0,0,0,0 --arm '" +
+                         source("data/arms/fvx-arm.urdf") + "'";
+const std::string kScene = " '" + source("data/scenes/paper-setting-2.ply") + "'";
+
+/// A 4-view explore session of paper-setting-2 in dir/session (recorded once per test binary
+/// run would save time, but each test owns its folder).
+json record(const TempDir& dir) {
+  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 4 --format json -o session");
+  EXPECT_EQ(r.status, 0) << r.err;
+  return r.status == 0 ? json::parse(r.out) : json();
+}
+
+json report(const TempDir& dir, const std::string& path) { return json::parse(slurp(dir / path)); }
+
+/// The report without what differs between runs: times.
+json without_timing(json j) {
+  if (j.is_object()) {
+    j.erase("timing_s");
+    j.erase("fvx_version");
+    for (auto& [key, value] : j.items()) value = without_timing(value);
+  } else if (j.is_array()) {
+    for (auto& value : j) value = without_timing(value);
+  }
+  return j;
+}
+
+TEST(CliReplay, ASessionReplaysToTheSameTableAndTheSameViews) {
+  const TempDir dir;
+  const json explored = record(dir)["results"]["rows"];
+  const RunResult r = run_fvx(dir, "replay session -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json replayed = json::parse(r.out)["results"]["rows"];
+  ASSERT_EQ(explored.size(), 4u);
+  ASSERT_EQ(replayed.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(replayed[i]["void_cells"], explored[i]["void_cells"]) << "view " << i + 1;
+    EXPECT_EQ(replayed[i]["map_void_cells"], explored[i]["map_void_cells"]) << "view " << i + 1;
+    EXPECT_EQ(replayed[i]["revealed_void_cells"], explored[i]["revealed_void_cells"]) << "view " << i + 1;
+    EXPECT_NEAR(replayed[i]["utility_dm3"].get<double>(), replayed[i]["void_cells"].get<double>() * 0.015625, 1e-9);
+    // The ranked views, hence the chosen one, are the same poses.
+    const json a = report(dir, "session/reports/view00" + std::to_string(i) + ".json")["results"]["views"];
+    const json b = report(dir, "out/reports/view00" + std::to_string(i) + ".json")["results"]["views"];
+    ASSERT_EQ(a.size(), b.size()) << "view " << i + 1;
+    for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k]["position_m"], b[k]["position_m"]);
+    EXPECT_EQ(report(dir, "out/reports/view00" + std::to_string(i) + ".json")["results"]["chosen_rank"], 1);
+    // Each logged next view was taken at the chosen one (FK within the map's tolerance).
+    if (i < 3) {
+      EXPECT_LT(replayed[i]["next_distance_m"].get<double>(), 0.006) << "view " << i + 1;
+    }
+  }
+  EXPECT_TRUE(replayed[3]["next_distance_m"].is_null());
+  const map::OccupancyMap last = map::OccupancyMap::load(dir / "out/maps/view003.ot");
+  EXPECT_GT(last.stats().occupied_leaves, 1000u);
+  EXPECT_GT(slurp(dir / "out/volumes.png").size(), 1000u);
+}
+
+TEST(CliReplay, TwiceGivesTheSameOutputsApartFromTimes) {
+  const TempDir dir;
+  record(dir);
+  const RunResult a = run_fvx(dir, "replay session -o a --format json");
+  const RunResult b = run_fvx(dir, "replay session -o b --format json");
+  ASSERT_EQ(a.status, 0) << a.err;
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(without_timing(json::parse(a.out))["results"]["rows"], without_timing(json::parse(b.out))["results"]["rows"]);
+  for (int i = 0; i < 4; ++i) {
+    const std::string name = "view00" + std::to_string(i);
+    EXPECT_EQ(slurp(dir / ("a/maps/" + name + ".ot")), slurp(dir / ("b/maps/" + name + ".ot"))) << name;
+    EXPECT_EQ(without_timing(report(dir, "a/reports/" + name + ".json"))["results"],
+              without_timing(report(dir, "b/reports/" + name + ".json"))["results"])
+        << name;
+  }
+  EXPECT_EQ(slurp(dir / "a/volumes.png"), slurp(dir / "b/volumes.png"));
+}
+
+TEST(CliReplay, ACorruptScanStopsAtItsViewAndKeepsTheViewsBefore) {
+  const TempDir dir;
+  record(dir);
+  {
+    std::ofstream broken(dir / "session/scans/view002.pcd", std::ios::trunc);
+    broken << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\n";
+  }
+  RunResult r = run_fvx(dir, "replay session -o out --format csv");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("view 2 ("), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("view002.pcd"), std::string::npos) << r.err;
+  EXPECT_EQ(line_count(r.out), 3u) << r.out;  // header and the two views before it
+  for (const char* name : {"view000", "view001"}) {
+    EXPECT_GT(map::OccupancyMap::load(dir / ("out/maps/" + std::string(name) + ".ot")).stats().occupied_leaves, 100u);
+    EXPECT_EQ(report(dir, "out/reports/" + std::string(name) + ".json")["command"], "replay");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/maps/view002.ot"));
+  // A missing scan, likewise.
+  std::filesystem::remove(dir / "session/scans/view002.pcd");
+  r = run_fvx(dir, "replay session -o out2");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("view 2 ("), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out2/maps/view001.ot"));
+}
+
+TEST(CliReplay, FromAndToChooseTheViews) {
+  const TempDir dir;
+  record(dir);
+  const RunResult r = run_fvx(dir, "replay session -o out --from 2 --to 3 --format csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(line_count(r.out), 3u) << r.out;
+  EXPECT_EQ(r.out.find("\n1,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n2,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n3,"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/maps/view000.ot"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/maps/view002.ot"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/maps/view003.ot"));
+}
+
+// The session's scans as a plain list with a TUM trajectory (no stamps): the same table.
+TEST(CliReplay, ScansWithATrajectoryReplayLikeTheSession) {
+  const TempDir dir;
+  const json explored = record(dir)["results"]["rows"];
+  const session::Manifest m = session::read_manifest(dir / "session");
+  {
+    std::ofstream poses(dir / "poses.txt");
+    poses << std::setprecision(17);
+    for (const auto& v : m.views) {
+      const Eigen::Quaterniond q(v.T_world_sensor_prior.linear());
+      const Eigen::Vector3d t = v.T_world_sensor_prior.translation();
+      poses << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w()
+            << '\n';
+    }
+  }
+  const std::string S = " --bounds 0.35,-0.75,0,1.3,0.9,0.55";
+  const RunResult r = run_fvx(dir, "replay --scans 'session/scans/*.pcd' --trajectory poses.txt --no-register" + kArm +
+                                       S + " -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json listed = json::parse(r.out)["results"]["rows"];
+  ASSERT_EQ(listed.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(listed[i]["void_cells"], explored[i]["void_cells"]) << "view " << i + 1;
+    EXPECT_EQ(listed[i]["map_void_cells"], explored[i]["map_void_cells"]) << "view " << i + 1;
+  }
+}
+
+/// Writes the poses as a TUM trajectory without stamps (frame i on line i).
+void write_poses(const std::string& path, const std::vector<Eigen::Isometry3d>& poses) {
+  std::ofstream out(path);
+  out << std::setprecision(17);
+  for (const auto& T : poses) {
+    const Eigen::Quaterniond q(T.linear());
+    const Eigen::Vector3d t = T.translation();
+    out << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+  }
+}
+
+/// Of the occupied cells of `a`, the share with an occupied cell of `b` within one cell.
+double share_within_one_cell(const map::OccupancyMap& a, const map::OccupancyMap& b) {
+  std::size_t near = 0, all = 0;
+  for (const Eigen::Vector3f& c : a.occupied_centers()) {
+    ++all;
+    bool found = false;
+    for (int dx = -1; dx <= 1 && !found; ++dx)
+      for (int dy = -1; dy <= 1 && !found; ++dy)
+        for (int dz = -1; dz <= 1 && !found; ++dz) {
+          const auto k = b.key_of(c.cast<double>() + b.resolution_m() * Eigen::Vector3d(dx, dy, dz));
+          found = k && b.state(*k) == map::VoxelState::Occupied;
+        }
+    near += found;
+  }
+  return all ? double(near) / double(all) : 0.0;
+}
+
+// A whole explore run with pose noise (2 cm, 2° per axis on every prior after the first):
+// its final map, registered, against the same scans integrated at their true poses (the
+// noise-free run of these views, by replay): at least 95 % of the occupied cells agree within
+// one cell. The same scans at their noisy priors without registration do not.
+TEST(CliReplay, RegistrationUnderPoseNoiseMatchesTheNoiseFreeMap) {
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 8 --pose-noise 0.02,2 -o session");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const session::Manifest m = session::read_manifest(dir / "session");
+  ASSERT_TRUE(m.registration);
+  std::vector<Eigen::Isometry3d> truth, priors;
+  for (const auto& v : m.views) {
+    ASSERT_TRUE(v.T_world_sensor_true.has_value());
+    truth.push_back(*v.T_world_sensor_true);
+    priors.push_back(v.T_world_sensor_prior);
+  }
+  ASSERT_GT((priors.back().translation() - truth.back().translation()).norm(), 0.005);  // the noise is there
+  write_poses(dir / "truth.txt", truth);
+  write_poses(dir / "priors.txt", priors);
+  const std::string last = "maps/view00" + std::to_string(m.views.size() - 1) + ".ot";
+  const std::string common = " --no-register --no-capmap --bounds 0.35,-0.75,0,1.3,0.9,0.55 --search-every 0";
+  ASSERT_EQ(run_fvx(dir, "replay --scans 'session/scans/*.pcd' --trajectory truth.txt -o exact" + common).status, 0);
+  ASSERT_EQ(run_fvx(dir, "replay --scans 'session/scans/*.pcd' --trajectory priors.txt -o noisy" + common).status, 0);
+  const map::OccupancyMap exact = map::OccupancyMap::load(dir / ("exact/" + last));
+  const double registered = share_within_one_cell(map::OccupancyMap::load(dir / ("session/" + last)), exact);
+  const double unregistered = share_within_one_cell(map::OccupancyMap::load(dir / ("noisy/" + last)), exact);
+  EXPECT_GE(registered, 0.95);
+  EXPECT_LT(unregistered, 0.95);
+  std::printf("occupied cells within one cell of the noise-free map: registered %.1f %%, unregistered %.1f %%\n",
+              100 * registered, 100 * unregistered);
+}
+
+// A TUM RGB-D folder (depth PNGs at 5000 per metre named by stamp, groundtruth.txt) of the
+// closed box rendered from three poses: the replay finds the poses by stamp and its map
+// holds the box's walls where they are.
+TEST(CliReplay, ATumFolderReplaysByTimestamp) {
+  const TempDir dir;
+  std::filesystem::create_directories(dir / "tum/depth");
+  const sim::Scene scene = sim::builtin_scene("closed-box");
+  const auto caster = sim::make_ray_caster(scene.mesh);
+  sim::SensorConfig sensor;
+  sensor.intrinsics.width = 160, sensor.intrinsics.height = 120;
+  sensor.intrinsics.fx = sensor.intrinsics.fy = 131.25, sensor.intrinsics.cx = 79.5, sensor.intrinsics.cy = 59.5;
+  sensor.intrinsics.depth_scale = 5000;  // TUM's
+  std::ofstream truth(dir / "tum/groundtruth.txt");
+  truth << "# timestamp tx ty tz qx qy qz qw\n" << std::setprecision(17);
+  for (int i = 0; i < 3; ++i) {
+    const double a = -0.6 + 0.6 * i, stamp = 1305031102.0 + 0.5 * i;
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(0.77 - 1.4 * std::cos(a), -0.02 - 1.4 * std::sin(a), 1.0);
+    T.linear() = viewpoints::look_along(Eigen::Vector3d(0.77, -0.02, 0.2) - T.translation(), 0.0);
+    const sim::Frame frame = sim::render(*caster, T, sensor, 1);
+    char name[64];
+    std::snprintf(name, sizeof name, "%.6f.png", stamp + 0.004);  // depth stamps lag the poses a little
+    io::write_depth_png(dir / ("tum/depth/" + std::string(name)), frame.depth);
+    const Eigen::Quaterniond q(T.linear());
+    truth << stamp << ' ' << T.translation().x() << ' ' << T.translation().y() << ' ' << T.translation().z() << ' '
+          << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+  }
+  truth.close();
+  const RunResult r = run_fvx(dir, "replay --tum tum --fx 131.25 --fy 131.25 --cx 79.5 --cy 59.5 --width 160 "
+                                   "--height 120 --no-capmap --no-register -o out --format csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(line_count(r.out), 4u) << r.out;
+  const map::OccupancyMap map = map::OccupancyMap::load(dir / "out/maps/view002.ot");
+  // The box's lid (z 0.38–0.40 m) is occupied at its centre-left, beside the opening.
+  const auto lid = map.key_of(Eigen::Vector3d(0.6, -0.02, 0.39));
+  ASSERT_TRUE(lid.has_value());
+  EXPECT_EQ(map.state(*lid), map::VoxelState::Occupied);
+}
+
+TEST(CliReplay, BadInputIsRefusedOnOneLine) {
+  const TempDir dir;
+  record(dir);
+  std::filesystem::create_directories(dir / "full");
+  std::ofstream(dir / "full/keep.txt") << "keep";
+  const std::vector<std::pair<std::string, int>> cases = {
+      {"replay -o out", 2},                                               // no input
+      {"replay session --scans 'x/*.pcd' --trajectory t.txt -o out", 2},  // two inputs
+      {"replay session", 2},                                              // no -o
+      {"replay session -o full", 2},                                      // not empty
+      {"replay session -o out --to 1 --from 2", 2},
+      {"replay session -o out --from 9", 2},
+      {"replay session -o out --format xml", 2},
+      {"replay session -o out --trajectory t.txt", 2},
+      {"replay --scans 'nothing/*.pcd' --trajectory t.txt --no-capmap -o out", 2},
+      {"replay --scans 'session/scans/*.pcd' --no-capmap -o out", 2},    // no trajectory
+      {"replay nowhere -o out", 1},                                       // not a session
+      {"replay --tum nowhere --no-capmap -o out", 1},
+  };
+  for (const auto& [args, status] : cases) {
+    const RunResult r = run_fvx(dir, args);
+    EXPECT_EQ(r.status, status) << args << "\n" << r.err;
+    EXPECT_EQ(line_count(r.err), 1u) << args << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << args;
+  }
+  EXPECT_EQ(slurp(dir / "full/keep.txt"), "keep");
+}
+
+// Real recorded data: both sequences run to the end, and the utility column is the void-cell
+// column times R³ in dm³ (the paper's tables obey the same rule).
+void expect_paper_rule(const json& rows, double R) {
+  const double cell_dm3 = R * R * R * 1000.0;
+  for (const auto& row : rows)
+    EXPECT_NEAR(row["utility_dm3"].get<double>(), row["void_cells"].get<double>() * cell_dm3, 1e-6) << row.dump();
+}
+
+TEST(CliReplayRealData, SlambookFiveFramesRunToTheEnd) {
+  FVX_REAL_DATA_OR_SKIP(root, "slambook-joinmap-5kf");
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "replay --scans '" + root + "/depth/*.pgm' --trajectory '" + root +
+                                       "/pose.txt' --fx 518 --fy 519 --cx 325.5 --cy 253.5 --no-capmap -r 0.05 "
+                                       "-o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json rows = json::parse(r.out)["results"]["rows"];
+  ASSERT_EQ(rows.size(), 5u);
+  expect_paper_rule(rows, 0.05);
+  for (const auto& row : rows) EXPECT_GT(row["void_cells"].get<int>(), 0) << row.dump();
+  for (std::size_t i = 1; i < rows.size(); ++i)  // registered by default, to the scans before
+    EXPECT_FALSE(rows[i]["registration_fitness_m"].is_null()) << rows[i].dump();
+  EXPECT_GT(rows[4]["known_dm3"].get<double>(), rows[0]["known_dm3"].get<double>());
+}
+
+TEST(CliReplayRealData, RedwoodFirstThirtyFramesRunToTheEnd) {
+  FVX_REAL_DATA_OR_SKIP(root, "redwood-livingroom1-micro");
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "replay --scans '" + root + "/depth/*.png' --trajectory '" + root +
+                                       "/trajectory_open3d_estimated.log' --no-capmap --no-register -r 0.05 --to 30 "
+                                       "-o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json rows = json::parse(r.out)["results"]["rows"];
+  ASSERT_EQ(rows.size(), 30u);
+  expect_paper_rule(rows, 0.05);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/maps/view029.ot"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/maps/view030.ot"));
+}
+
+}  // namespace
+}  // namespace fvx::test
