@@ -64,7 +64,7 @@ for scene in paper-setting-1 paper-setting-2; do
   "$build/src/fvx" replay "$bench_out/$scene" -o "$bench_out/$scene-replay" --format json 2>/dev/null |
     jq -r --arg name "$scene" '
       def med: sort | .[(length / 2 | floor)];
-      def r3: * 1000 | round / 1000;
+      def r3: . * 1000 | round / 1000;
       [.results.rows[].timing_s] as $t
       | [$t[] | .integration + .frontiers_voids] as $i | [$t[].search] as $s
       | "\($name): \($t | length) views; integration median \($i | med | r3) s, max \($i | max | r3) s; search median \($s | med | r3) s, max \($s | max | r3) s"'

@@ -161,7 +161,7 @@ int run_explore(const Args& args) {
   session::ExploreConfig config;
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
-  nc.strategy = args.has("planner") ? nbv::parse_strategy(args.get("planner")) : nbv::Strategy::FrontierVoid;
+  nc.strategy = args.has("planner") ? nbv::parse_strategy(args.get("planner"), "--planner") : nbv::Strategy::FrontierVoid;
   nc.sensor = parse_depth_camera(args, "explore");
   nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));

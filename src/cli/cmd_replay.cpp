@@ -194,9 +194,11 @@ int run_replay(const Args& args) {
   const bool session_input = args.positional.size() == 1;
   if (session_input && args.has("trajectory"))
     throw UsageError("fvx replay: a session has its poses in its manifest; --trajectory goes with --scans or --tum");
-  if (args.has("capmap") || args.has("no-capmap") || !session_input) check_arm_options(args, "fvx replay");
-  if (session_input && !args.has("capmap") && (args.has("base") || args.has("arm")))
-    throw UsageError("fvx replay: --base and --arm go with --capmap (a session's own arm needs neither)");
+  // The arm: --capmap or --no-capmap; without either, a session's own, else free-flying.
+  const bool arm_flags = args.has("capmap") || args.has("no-capmap");
+  if (arm_flags) check_arm_options(args, "fvx replay");
+  if (!args.has("capmap") && (args.has("base") || args.has("arm")))
+    throw UsageError("fvx replay: --base and --arm go with --capmap");
   const Format format = parse_format(args);
   const int from = int(args.integer("from", 1, 1, 1000000));
   const int to = int(args.integer("to", 0, 1, 1000000));
@@ -224,13 +226,11 @@ int run_replay(const Args& args) {
     pc.resolution_m = m.resolution_m;
     pc.bounds_m = m.search_space_m;
     nc.view_bounds_m = m.view_bounds_m;
-    nc.strategy = nbv::parse_strategy(m.planner);
+    nc.strategy = nbv::parse_strategy(m.planner, session.string() + "/manifest.json: planner");
     nc.seed = m.seed;
     pc.register_scans = m.registration;
     nc.count_near_void_cells = m.near_voids;
-    if (args.has("no-capmap")) {
-      load_arm_inputs(args, "fvx replay", arm_inputs);
-    } else if (args.has("capmap")) {
+    if (arm_flags) {
       load_arm_inputs(args, "fvx replay", arm_inputs);
     } else if (!m.capmap.empty()) {
       load_arm_files(resolve(m.capmap, session), resolve(m.arm, session), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
@@ -284,10 +284,10 @@ int run_replay(const Args& args) {
     pc.register_scans = !args.has("no-register");
     nc.strategy = nbv::Strategy::FrontierVoid;
     nc.count_near_void_cells = false;  // as fvx explore: only what the sensor can measure
-    load_arm_inputs(args, "fvx replay", arm_inputs);
+    if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
   }
   // Flags over the recording.
-  if (args.has("planner")) nc.strategy = nbv::parse_strategy(args.get("planner"));
+  if (args.has("planner")) nc.strategy = nbv::parse_strategy(args.get("planner"), "--planner");
   if (args.has("register")) pc.register_scans = true;
   if (args.has("no-register")) pc.register_scans = false;
   if (args.has("near-voids")) nc.count_near_void_cells = true;

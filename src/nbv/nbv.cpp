@@ -20,10 +20,10 @@ const char* to_string(Strategy s) {
   return "?";
 }
 
-Strategy parse_strategy(const std::string& name) {
+Strategy parse_strategy(const std::string& name, const std::string& what) {
   for (Strategy s : {Strategy::FrontierVoid, Strategy::Exhaustive, Strategy::Frontier, Strategy::Random})
     if (name == to_string(s)) return s;
-  throw UsageError("--strategy '" + name + "': expected frontier-void, exhaustive, frontier or random");
+  throw UsageError(what + " '" + name + "': expected frontier-void, exhaustive, frontier or random");
 }
 
 std::vector<std::string> Config::validate() const {

@@ -252,7 +252,7 @@ TEST(CliReplay, ATumFolderReplaysByTimestamp) {
   }
   truth.close();
   const RunResult r = run_fvx(dir, "replay --tum tum --fx 131.25 --fy 131.25 --cx 79.5 --cy 59.5 --width 160 "
-                                   "--height 120 --no-capmap --no-register -o out --format csv");
+                                   "--height 120 --no-register -o out --format csv");  // no arm: free-flying
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(line_count(r.out), 4u) << r.out;
   const map::OccupancyMap map = map::OccupancyMap::load(dir / "out/maps/view002.ot");
@@ -280,6 +280,8 @@ TEST(CliReplay, BadInputIsRefusedOnOneLine) {
       {"replay --scans 'session/scans/*.pcd' --no-capmap -o out", 2},    // no trajectory
       {"replay nowhere -o out", 1},                                       // not a session
       {"replay --tum nowhere --no-capmap -o out", 1},
+      {"replay session -o out --base 0,0,0,0,0,0", 2},                   // --base without --capmap
+      {"replay session -o out --planner best", 2},
   };
   for (const auto& [args, status] : cases) {
     const RunResult r = run_fvx(dir, args);

@@ -27,8 +27,9 @@ enum class Strategy {
   Random,        ///< reference: a random reachable pose that sees at least one void cell
 };
 const char* to_string(Strategy s);
-/// "frontier-void", "exhaustive", "frontier", "random"; UsageError otherwise.
-Strategy parse_strategy(const std::string& name);
+/// "frontier-void", "exhaustive", "frontier", "random"; UsageError naming `what` (the option
+/// or file it came from) otherwise.
+Strategy parse_strategy(const std::string& name, const std::string& what = "--strategy");
 
 /// Where the arm stands and what it can reach. Without one, the sensor flies free.
 struct Reach {
