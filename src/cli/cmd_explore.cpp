@@ -139,12 +139,6 @@ Eigen::Isometry3d start_facing(const nbv::Reach& reach, const Eigen::Vector3d& t
   return T;
 }
 
-std::string view_name(int view, const char* ext) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "view%03d%s", view, ext);
-  return buf;
-}
-
 }  // namespace
 
 int run_explore(const Args& args) {
@@ -325,9 +319,9 @@ int run_explore(const Args& args) {
         // The view's files, then the manifest that lists them.
         session::ManifestView mv;
         mv.view = v.view;
-        mv.scan = "scans/" + view_name(v.view, ".pcd");
-        mv.map = "maps/" + view_name(v.view, ".ot");
-        mv.report = "reports/" + view_name(v.view, ".json");
+        mv.scan = "scans/" + view_file_name(v.view, ".pcd");
+        mv.map = "maps/" + view_file_name(v.view, ".ot");
+        mv.report = "reports/" + view_file_name(v.view, ".json");
         mv.T_world_sensor_prior = v.T_world_sensor_prior;
         mv.T_world_sensor_true = v.T_world_sensor_true;
         mv.joints_rad = v.joints_rad;

@@ -119,12 +119,6 @@ Json row_json(const Row& r) {
           {"void_dm3", r.void_dm3}};
 }
 
-std::string view_name(int view, const char* ext) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "view%03d%s", view, ext);
-  return buf;
-}
-
 /// A path from a manifest: as written (relative to where explore ran), else relative to the
 /// session directory.
 std::string resolve(const std::string& path, const std::filesystem::path& session) {
@@ -344,7 +338,7 @@ int run_replay(const Args& args) {
       row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
       rows.push_back(row);
       if (v.view + 1 >= from) {
-        state.map.save((dir / "maps" / view_name(v.view, ".ot")).string());
+        state.map.save((dir / "maps" / view_file_name(v.view, ".ot")).string());
         Json report = new_report("replay");
         report["inputs"] = {{"source", source_json}, {"view", v.view + 1}, {"scan", v.name}};
         Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
@@ -353,7 +347,7 @@ int run_replay(const Args& args) {
         results["row"] = row_json(row);
         report["results"] = results;
         report["warnings"] = step.analysis.warnings;
-        write_report(report, (dir / "reports" / view_name(v.view, ".json")).string());
+        write_report(report, (dir / "reports" / view_file_name(v.view, ".json")).string());
       }
       progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
                       std::to_string(row.map_void_cells) + " void cells, best view sees " +

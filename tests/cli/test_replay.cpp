@@ -236,6 +236,7 @@ TEST(CliReplay, ATumFolderReplaysByTimestamp) {
   sensor.intrinsics.fx = sensor.intrinsics.fy = 131.25, sensor.intrinsics.cx = 79.5, sensor.intrinsics.cy = 59.5;
   sensor.intrinsics.depth_scale = 5000;  // TUM's
   std::ofstream truth(dir / "tum/groundtruth.txt");
+  std::ofstream associations(dir / "tum/associations.txt");  // rgb and depth; the second image left out
   truth << "# timestamp tx ty tz qx qy qz qw\n" << std::setprecision(17);
   for (int i = 0; i < 3; ++i) {
     const double a = -0.6 + 0.6 * i, stamp = 1305031102.0 + 0.5 * i;
@@ -246,11 +247,13 @@ TEST(CliReplay, ATumFolderReplaysByTimestamp) {
     char name[64];
     std::snprintf(name, sizeof name, "%.6f.png", stamp + 0.004);  // depth stamps lag the poses a little
     io::write_depth_png(dir / ("tum/depth/" + std::string(name)), frame.depth);
+    if (i != 1) associations << name << " rgb/" << name << ' ' << name << " depth/" << name << '\n';
     const Eigen::Quaterniond q(T.linear());
     truth << stamp << ' ' << T.translation().x() << ' ' << T.translation().y() << ' ' << T.translation().z() << ' '
           << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
   }
   truth.close();
+  associations.close();
   const RunResult r = run_fvx(dir, "replay --tum tum --fx 131.25 --fy 131.25 --cx 79.5 --cy 59.5 --width 160 "
                                    "--height 120 --no-register -o out --format csv");  // no arm: free-flying
   ASSERT_EQ(r.status, 0) << r.err;
@@ -260,6 +263,11 @@ TEST(CliReplay, ATumFolderReplaysByTimestamp) {
   const auto lid = map.key_of(Eigen::Vector3d(0.6, -0.02, 0.39));
   ASSERT_TRUE(lid.has_value());
   EXPECT_EQ(map.state(*lid), map::VoxelState::Occupied);
+  // An associations file chooses the depth images (TUM's associate.py output).
+  const RunResult listed = run_fvx(dir, "replay --tum tum --associations tum/associations.txt --fx 131.25 --fy 131.25 "
+                                        "--cx 79.5 --cy 59.5 --width 160 --height 120 --no-register -o out2 --format csv");
+  ASSERT_EQ(listed.status, 0) << listed.err;
+  EXPECT_EQ(line_count(listed.out), 3u) << listed.out;
 }
 
 TEST(CliReplay, BadInputIsRefusedOnOneLine) {
