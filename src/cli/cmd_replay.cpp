@@ -173,6 +173,97 @@ std::vector<std::string> tum_depth_images(const std::filesystem::path& dir, cons
   return paths;
 }
 
+/// What a replay reads: the scans (loaded when their turn comes) and what the JSON names.
+struct Inputs {
+  std::vector<session::RecordedScan> scans;
+  std::string source;
+};
+
+/// A session: the loop's settings as recorded (flags go on top later), the arm from its
+/// manifest unless --capmap/--no-capmap, each scan at its recorded prior.
+Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& config, ArmInputs& arm_inputs) {
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  Inputs in;
+  const std::filesystem::path session = args.positional[0];
+  const session::Manifest m = session::read_manifest(session.string());
+  if (m.views.empty()) throw Error("fvx replay: " + session.string() + ": the session holds no view");
+  in.source = session.string();
+  nc.sensor = io::read_depth_camera((session / m.sensor).string());
+  if (args.has("sensor") || args.has("intrinsics") || args.has("depth-min") || args.has("depth-max"))
+    nc.sensor = parse_depth_camera(args, "replay");
+  pc.resolution_m = m.resolution_m;
+  pc.bounds_m = m.search_space_m;
+  nc.view_bounds_m = m.view_bounds_m;
+  nc.strategy = nbv::parse_strategy(m.planner, session.string() + "/manifest.json: planner");
+  nc.seed = m.seed;
+  pc.register_scans = m.registration;
+  nc.count_near_void_cells = m.near_voids;
+  if (arm_flags) {
+    load_arm_inputs(args, "fvx replay", arm_inputs);
+  } else if (!m.capmap.empty()) {
+    load_arm_files(resolve(m.capmap, session), resolve(m.arm, session), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
+                   "fvx replay", arm_inputs);
+  }
+  for (const session::ManifestView& v : m.views) {
+    session::RecordedScan r;
+    r.name = (session / v.scan).string();
+    r.T_world_sensor_true = v.T_world_sensor_true;
+    const Eigen::Isometry3d prior = v.T_world_sensor_prior;
+    r.load = [path = r.name, prior]() {
+      scan::LoadConfig load;
+      scan::ScanSource source{path, prior, scan::PoseSource::Trajectory};
+      std::vector<std::string> warnings;
+      return scan::load_scan(source, load, warnings);
+    };
+    in.scans.push_back(std::move(r));
+  }
+  return in;
+}
+
+/// Recorded scans with a trajectory (a TUM folder or a list of files): registration on, the
+/// measurable U of fvx explore, the arm only when --capmap is given (else free-flying).
+Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& config, ArmInputs& arm_inputs) {
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  Inputs in;
+  nc.sensor = parse_depth_camera(args, "replay");
+  std::vector<std::string> paths;
+  scan::LoadConfig load;
+  if (args.has("tum")) {
+    const std::filesystem::path tum = args.get("tum");
+    paths = tum_depth_images(tum, args.has("associations") ? args.get("associations") : "");
+    load.trajectory_path = args.has("trajectory") ? args.get("trajectory") : (tum / "groundtruth.txt").string();
+    if (!std::filesystem::exists(load.trajectory_path))
+      throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
+    // TUM depth images store 5000 units per metre.
+    if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;
+    in.source = tum.string();
+  } else {
+    paths = expand_glob(args.get("scans"));
+    load.trajectory_path = args.get("trajectory");
+    in.source = args.get("scans");
+  }
+  load.intrinsics = nc.sensor.intrinsics;
+  load.max_time_diff_s = args.number("max-time-diff", 0.02, 0.0, 1e6);
+  const scan::ScanPlan plan = scan::plan_scans(paths, load);
+  for (const auto& warning : plan.warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
+  for (const scan::ScanSource& source : plan.scans) {
+    session::RecordedScan r;
+    r.name = source.path;
+    r.load = [source, load]() {
+      std::vector<std::string> warnings;
+      return scan::load_scan(source, load, warnings);
+    };
+    in.scans.push_back(std::move(r));
+  }
+  pc.register_scans = !args.has("no-register");
+  nc.strategy = nbv::Strategy::FrontierVoid;
+  nc.count_near_void_cells = false;  // as fvx explore: only what the sensor can measure
+  if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
+  return in;
+}
+
 }  // namespace
 
 int run_replay(const Args& args) {
@@ -206,80 +297,10 @@ int run_replay(const Args& args) {
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
   ArmInputs arm_inputs;
-  std::vector<session::RecordedScan> scans;
-  std::string source_json;
-  if (session_input) {
-    // A session: everything as recorded, flags on top.
-    const std::filesystem::path session = args.positional[0];
-    const session::Manifest m = session::read_manifest(session.string());
-    if (m.views.empty()) throw Error("fvx replay: " + session.string() + ": the session holds no view");
-    source_json = session.string();
-    nc.sensor = io::read_depth_camera((session / m.sensor).string());
-    if (args.has("sensor") || args.has("intrinsics") || args.has("depth-min") || args.has("depth-max"))
-      nc.sensor = parse_depth_camera(args, "replay");
-    pc.resolution_m = m.resolution_m;
-    pc.bounds_m = m.search_space_m;
-    nc.view_bounds_m = m.view_bounds_m;
-    nc.strategy = nbv::parse_strategy(m.planner, session.string() + "/manifest.json: planner");
-    nc.seed = m.seed;
-    pc.register_scans = m.registration;
-    nc.count_near_void_cells = m.near_voids;
-    if (arm_flags) {
-      load_arm_inputs(args, "fvx replay", arm_inputs);
-    } else if (!m.capmap.empty()) {
-      load_arm_files(resolve(m.capmap, session), resolve(m.arm, session), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
-                     "fvx replay", arm_inputs);
-    }
-    for (const session::ManifestView& v : m.views) {
-      session::RecordedScan r;
-      r.name = (session / v.scan).string();
-      r.T_world_sensor_true = v.T_world_sensor_true;
-      const Eigen::Isometry3d prior = v.T_world_sensor_prior;
-      r.load = [path = r.name, prior]() {
-        scan::LoadConfig load;
-        scan::ScanSource source{path, prior, scan::PoseSource::Trajectory};
-        std::vector<std::string> warnings;
-        return scan::load_scan(source, load, warnings);
-      };
-      scans.push_back(std::move(r));
-    }
-  } else {
-    // Recorded scans with a trajectory (a TUM folder or a list of files).
-    nc.sensor = parse_depth_camera(args, "replay");
-    std::vector<std::string> paths;
-    scan::LoadConfig load;
-    if (args.has("tum")) {
-      const std::filesystem::path tum = args.get("tum");
-      paths = tum_depth_images(tum, args.has("associations") ? args.get("associations") : "");
-      load.trajectory_path = args.has("trajectory") ? args.get("trajectory") : (tum / "groundtruth.txt").string();
-      if (!std::filesystem::exists(load.trajectory_path))
-        throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
-      // TUM depth images store 5000 units per metre.
-      if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;
-      source_json = tum.string();
-    } else {
-      paths = expand_glob(args.get("scans"));
-      load.trajectory_path = args.get("trajectory");
-      source_json = args.get("scans");
-    }
-    load.intrinsics = nc.sensor.intrinsics;
-    load.max_time_diff_s = args.number("max-time-diff", 0.02, 0.0, 1e6);
-    const scan::ScanPlan plan = scan::plan_scans(paths, load);
-    for (const auto& warning : plan.warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
-    for (const scan::ScanSource& source : plan.scans) {
-      session::RecordedScan r;
-      r.name = source.path;
-      r.load = [source, load]() {
-        std::vector<std::string> warnings;
-        return scan::load_scan(source, load, warnings);
-      };
-      scans.push_back(std::move(r));
-    }
-    pc.register_scans = !args.has("no-register");
-    nc.strategy = nbv::Strategy::FrontierVoid;
-    nc.count_near_void_cells = false;  // as fvx explore: only what the sensor can measure
-    if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
-  }
+  const Inputs inputs = session_input ? session_inputs(args, arm_flags, config, arm_inputs)
+                                     : recorded_inputs(args, arm_flags, config, arm_inputs);
+  const std::vector<session::RecordedScan>& scans = inputs.scans;
+  const std::string& source_json = inputs.source;
   // Flags over the recording.
   if (args.has("planner")) nc.strategy = nbv::parse_strategy(args.get("planner"), "--planner");
   if (args.has("register")) pc.register_scans = true;
