@@ -96,7 +96,9 @@ Result select_frontier_void(Search& s, Result result) {
   utility_config.threads = s.config.threads;
   // Void cells a taken view left hidden no longer count in U; they leave u_i too, or a void
   // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
-  const utility::Field field = utility::accumulate(s.grid, s.visible_utility(), utility_config);
+  const std::optional<frontier_voids::Analysis> visible =
+      s.config.hidden_void_cells.empty() ? std::nullopt : std::optional(s.visible_utility());
+  const utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
   result.utility_vectors = field.vectors;
   result.timing.accumulation_s = seconds_since(t0);
 

@@ -63,7 +63,6 @@ std::vector<std::uint8_t> Search::void_mask() const {
 
 frontier_voids::Analysis Search::visible_utility() const {
   frontier_voids::Analysis visible = a;
-  if (config.hidden_void_cells.empty()) return visible;
   const double cell_m3 = std::pow(grid.resolution_m(), 3);
   for (auto& fv : visible.frontier_voids) {
     std::size_t cells = 0;

@@ -60,8 +60,8 @@ struct Search {
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
 
   std::vector<std::uint8_t> void_mask() const;
-  /// The analysis with each frontier-void's u_i counting only the void cells U counts
-  /// (config.hidden_void_cells left out); the analysis itself when none are hidden.
+  /// A copy of the analysis with each frontier-void's u_i counting only the void cells U
+  /// counts (config.hidden_void_cells left out).
   frontier_voids::Analysis visible_utility() const;
 
   /// With an arm, turns the rotation's optical axis to the nearest direction the capability

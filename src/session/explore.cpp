@@ -8,7 +8,6 @@
 #include <random>
 
 #include "fvx/core/error.hpp"
-#include "fvx/session/replay.hpp"
 #include "fvx/session/session.hpp"
 
 namespace fvx::session {
@@ -16,6 +15,10 @@ namespace fvx::session {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A ranked view this close to a view already taken repeats it.
+constexpr double kSamePosition_m = 0.05;
+constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
 
 /// The prior a robot would record: the true pose off by Gaussian noise.
 Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T_true, double sigma_m, double sigma_deg, std::mt19937_64& rng) {
@@ -39,6 +42,20 @@ Eigen::Isometry3d executed(const nbv::View& view, const std::optional<nbv::Reach
 }
 
 }  // namespace
+
+bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.translation() - b.translation()).norm() < kSamePosition_m &&
+         a.linear().col(2).dot(b.linear().col(2)) > std::cos(kSameDirection_rad);
+}
+
+std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
+                                                const std::vector<Eigen::Isometry3d>& taken) {
+  for (std::size_t i = 0; i < views.size(); ++i)
+    if (std::none_of(taken.begin(), taken.end(),
+                     [&](const Eigen::Isometry3d& T) { return same_view(T, views[i].T_world_sensor); }))
+      return i;
+  return std::nullopt;
+}
 
 std::pair<Eigen::Isometry3d, Eigen::VectorXd> start_configuration(const std::optional<nbv::Reach>& reach,
                                                                    const Eigen::Isometry3d& T_world_sensor,

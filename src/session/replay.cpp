@@ -11,28 +11,11 @@ namespace fvx::session {
 
 namespace {
 
-constexpr double kSamePosition_m = 0.05;
-constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
-
 double axis_angle_rad(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::acos(std::clamp(a.linear().col(2).dot(b.linear().col(2)), -1.0, 1.0));
 }
 
 }  // namespace
-
-bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return (a.translation() - b.translation()).norm() < kSamePosition_m &&
-         a.linear().col(2).dot(b.linear().col(2)) > std::cos(kSameDirection_rad);
-}
-
-std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
-                                                const std::vector<Eigen::Isometry3d>& taken) {
-  for (std::size_t i = 0; i < views.size(); ++i)
-    if (std::none_of(taken.begin(), taken.end(),
-                     [&](const Eigen::Isometry3d& T) { return same_view(T, views[i].T_world_sensor); }))
-      return i;
-  return std::nullopt;
-}
 
 std::vector<std::string> ReplayConfig::validate() const {
   std::vector<std::string> problems = pipeline.validate();

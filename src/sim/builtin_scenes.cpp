@@ -40,6 +40,15 @@ Eigen::AlignedBox3d interior(const Box& outer, float wall) {
   return to_d(Box(outer.min() + V::Constant(wall), outer.max() - V::Constant(wall)));
 }
 
+/// Four walls `t` thick around the rectangle (x0, y0)–(x1, y1), from z0 to z1: the x walls
+/// span the rectangle's y, the y walls the whole outer x (corners are not doubled).
+void add_walls(Mesh& m, float x0, float y0, float x1, float y1, float z0, float z1, float t) {
+  m.add_box(Box(V(x0 - t, y0, z0), V(x0, y1, z1)));
+  m.add_box(Box(V(x1, y0, z0), V(x1 + t, y1, z1)));
+  m.add_box(Box(V(x0 - t, y0 - t, z0), V(x1 + t, y0, z1)));
+  m.add_box(Box(V(x0 - t, y1, z0), V(x1 + t, y1 + t, z1)));
+}
+
 Mesh floor_slab() {
   Mesh m;
   m.add_box(Box(V(-0.6f, -1.6f, -0.05f), V(2.0f, 1.6f, 0.0f)));
@@ -52,11 +61,7 @@ Mesh floor_slab() {
 /// horizon return nothing and that air stays unknown.
 Mesh lab() {
   Mesh m = floor_slab();
-  const float t = 0.05f, h = 2.0f;
-  m.add_box(Box(V(-0.6f - t, -1.6f, -0.05f), V(-0.6f, 1.6f, h)));
-  m.add_box(Box(V(2.0f, -1.6f, -0.05f), V(2.0f + t, 1.6f, h)));
-  m.add_box(Box(V(-0.6f - t, -1.6f - t, -0.05f), V(2.0f + t, -1.6f, h)));
-  m.add_box(Box(V(-0.6f - t, 1.6f, -0.05f), V(2.0f + t, 1.6f + t, h)));
+  add_walls(m, -0.6f, -1.6f, 2.0f, 1.6f, -0.05f, 2.0f, 0.05f);
   return m;
 }
 
@@ -80,10 +85,7 @@ Scene room() {
   const float t = 0.05f;
   s.mesh.add_box(Box(V(-2.0f, -1.5f, -t), V(2.0f, 1.5f, 0.0f)));             // floor
   s.mesh.add_box(Box(V(-2.0f, -1.5f, 2.5f), V(2.0f, 1.5f, 2.5f + t)));       // ceiling
-  s.mesh.add_box(Box(V(-2.0f - t, -1.5f, -t), V(-2.0f, 1.5f, 2.5f + t)));    // walls
-  s.mesh.add_box(Box(V(2.0f, -1.5f, -t), V(2.0f + t, 1.5f, 2.5f + t)));
-  s.mesh.add_box(Box(V(-2.0f - t, -1.5f - t, -t), V(2.0f + t, -1.5f, 2.5f + t)));
-  s.mesh.add_box(Box(V(-2.0f - t, 1.5f, -t), V(2.0f + t, 1.5f + t, 2.5f + t)));
+  add_walls(s.mesh, -2.0f, -1.5f, 2.0f, 1.5f, -t, 2.5f + t, t);
   const Box crate(V(0.21f, -0.29f, 0.0f), V(0.81f, 0.31f, 0.6f));
   s.mesh.append(hollow_box(crate, 0.02f, kSolid));
   s.info.name = "room with a closed crate";

@@ -12,16 +12,9 @@
 
 #include "fvx/pipeline/pipeline.hpp"
 #include "fvx/scan/scan.hpp"
+#include "fvx/session/session.hpp"
 
 namespace fvx::session {
-
-/// Two sensor poses are the same view within 5 cm and 10° between their optical axes (the
-/// explore loop passes over ranked views this close to one already taken).
-bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
-
-/// The best ranked view (index into `views`) that is not the same view as one in `taken`.
-std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
-                                                const std::vector<Eigen::Isometry3d>& taken);
 
 /// One recorded scan. `load` reads it when its turn comes, so that a missing or corrupt file
 /// stops the replay there, after the views before it are done.

@@ -101,6 +101,14 @@ struct ExploreResult {
   bool utility_exhausted = false;  ///< the planner found no view with U > 0
 };
 
+/// Two sensor poses are the same view within 5 cm and 10° between their optical axes (the
+/// explore loop passes over ranked views this close to one already taken).
+bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+/// The best ranked view (index into `views`) that is not the same view as one in `taken`.
+std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
+                                                const std::vector<Eigen::Isometry3d>& taken);
+
 /// Where the sensor really starts and the arm's configuration there: with an arm, the
 /// capability map must reach the pose (Error otherwise) and, with its URDF, IK must solve it;
 /// the sensor then stands at the forward kinematics of that solution.
