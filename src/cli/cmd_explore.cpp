@@ -73,6 +73,8 @@ struct Row {
   std::size_t target_cells = 0;
   bool target_seen = false;
   std::optional<std::size_t> revealed;  ///< of this view's void cells, known after the next scan
+  std::size_t u_in_solid = 0;      ///< ground truth: of void_cells, cells inside material
+  std::size_t free_in_solid = 0;   ///< ground truth: free map cells in S inside material
   std::optional<double> registration_fitness_m;
 };
 
@@ -85,11 +87,13 @@ std::vector<std::string> cells(const Row& r) {
           std::to_string(r.map_void_cells),
           fixed(100.0 * r.known_fraction, 1),
           r.target_seen ? "yes" : "no",
-          r.revealed ? std::to_string(*r.revealed) : "-"};
+          r.revealed ? std::to_string(*r.revealed) : "-",
+          std::to_string(r.u_in_solid)};
 }
 
 const std::vector<std::string> kHeader = {"view",           "integration_s", "search_s",    "void_cells", "utility_dm3",
-                                          "map_void_cells", "known_pct",     "target_seen", "revealed"};
+                                          "map_void_cells", "known_pct",     "target_seen", "revealed",
+                                          "u_in_solid"};
 
 Json row_json(const Row& r) {
   Json j = {{"view", r.view + 1},
@@ -102,6 +106,8 @@ Json row_json(const Row& r) {
             {"target_cells_seen", r.target_cells},
             {"target_seen", r.target_seen},
             {"revealed_void_cells", r.revealed ? Json(*r.revealed) : Json(nullptr)},
+            {"void_cells_in_solid", r.u_in_solid},
+            {"free_cells_in_solid", r.free_in_solid},
             {"registration_fitness_m", r.registration_fitness_m ? Json(*r.registration_fitness_m) : Json(nullptr)}};
   return j;
 }
@@ -312,6 +318,8 @@ int run_explore(const Args& args) {
         row.known_fraction = score.known_fraction(state.map);
         row.target_cells = score.target_cells_seen(state.map);
         row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
+        if (v.chosen) row.u_in_solid = gt.solid_among(step.nbv.views[*v.chosen].seen_void_cells);
+        row.free_in_solid = gt.free_in_solid(state.map, S);
         if (step.registration) row.registration_fitness_m = step.registration->fitness_rmse_m;
         if (!rows.empty()) rows.back().revealed = v.revealed_void_cells;
         rows.push_back(row);

@@ -103,6 +103,28 @@ double GroundTruth::free_volume_m3(const Eigen::AlignedBox3d& box) const {
   return double(count) * resolution_m_ * resolution_m_ * resolution_m_;
 }
 
+std::size_t GroundTruth::solid_among(const std::vector<map::VoxelKey>& keys) const {
+  std::size_t count = 0;
+  for (const map::VoxelKey& k : keys) {
+    const Eigen::Vector3i cell(int(k.x) - 32768, int(k.y) - 32768, int(k.z) - 32768);  // OctoMap's key offset
+    count += contains(cell) && solid(cell);
+  }
+  return count;
+}
+
+std::size_t GroundTruth::free_in_solid(const map::OccupancyMap& map, const Eigen::AlignedBox3d& box) const {
+  std::size_t count = 0;
+  for (int z = 0; z < size_.z(); ++z)
+    for (int y = 0; y < size_.y(); ++y)
+      for (int x = 0; x < size_.x(); ++x) {
+        const Eigen::Vector3i cell = first_ + Eigen::Vector3i(x, y, z);
+        if (!solid_[index(cell)] || !box.contains(center_of(cell))) continue;
+        const auto key = map.key_of(center_of(cell));
+        count += key && map.state(*key) == map::VoxelState::Free;
+      }
+  return count;
+}
+
 map::OccupancyMap GroundTruth::to_map() const {
   map::OccupancyMap map(resolution_m_);
   for (int z = 0; z < size_.z(); ++z)

@@ -37,6 +37,14 @@ class GroundTruth {
   /// Free cells whose centres lie in `box`, times R³.
   double free_volume_m3(const Eigen::AlignedBox3d& box) const;
 
+  /// Of `keys` (cells of a map with this resolution), those solid here: predicted void
+  /// cells that no scan can reveal as free. Keys outside the region do not count.
+  std::size_t solid_among(const std::vector<map::VoxelKey>& keys) const;
+  /// Cells whose centres lie in `box` that are solid here but free in `map` (same
+  /// resolution): a surface seen only edge-on, whose cell the rays through its empty part
+  /// cleared. Behind such a cell the map shows a solid's unknown inside as open to view.
+  std::size_t free_in_solid(const map::OccupancyMap& map, const Eigen::AlignedBox3d& box) const;
+
   /// The ground truth as a map: solid cells occupied, free cells free (both at the clamping
   /// bounds), everything else unknown. Open it in octovis, or compare it with a built map.
   map::OccupancyMap to_map() const;

@@ -1,6 +1,7 @@
 // Ground truth for explorations: the sealed crate's air is not observable, the open crate's
 // is; the ground truth itself knows everything and an empty map nothing; a pose looking
-// into the open crate keeps only what it reveals, and one that sees the victim says so.
+// into the open crate keeps only what it reveals, and one that sees the victim says so; the
+// ground truth tells which predicted void cells and which free map cells lie inside material.
 #include <gtest/gtest.h>
 
 #include "fvx/sim/builtin_scenes.hpp"
@@ -62,6 +63,27 @@ TEST(ExplorationScore, ViewsKeepWhatTheyReveal) {
   inside.linear() = viewpoints::look_along(Eigen::Vector3d(0.85, -0.05, 0.06) - inside.translation(), 0.0);
   victim.restrict_to_views(c.gt, {inside}, rays, 0.05, 4.0);
   EXPECT_GT(*victim.observable_target_cells(), 0u);
+}
+
+TEST(GroundTruth, CountsPredictionsAndFreeCellsInsideSolids) {
+  const Crates c;
+  map::OccupancyMap truth = c.gt.to_map();
+  EXPECT_EQ(c.gt.free_in_solid(truth, c.S), 0u);
+  EXPECT_EQ(c.gt.free_in_solid(map::OccupancyMap(0.025), c.S), 0u);
+  // A cell of the closed crate's wall (x 0.55…0.565) and one of the air inside it.
+  const auto wall = truth.key_of({0.56, 0.4, 0.2});
+  const auto air = truth.key_of({0.75, 0.4, 0.17});
+  ASSERT_TRUE(wall && air);
+  ASSERT_TRUE(c.gt.solid(c.gt.cell_of({0.56, 0.4, 0.2})));
+  ASSERT_FALSE(c.gt.solid(c.gt.cell_of({0.75, 0.4, 0.17})));
+  EXPECT_EQ(c.gt.solid_among({*wall, *air}), 1u);
+  EXPECT_EQ(c.gt.solid_among({*air}), 0u);
+  // A key far outside the ground truth's region does not count.
+  EXPECT_EQ(c.gt.solid_among({map::VoxelKey{100, 100, 100}}), 0u);
+  truth.set_state(*wall, map::VoxelState::Free);
+  EXPECT_EQ(c.gt.free_in_solid(truth, c.S), 1u);
+  // Outside the box it does not count.
+  EXPECT_EQ(c.gt.free_in_solid(truth, Eigen::AlignedBox3d(Eigen::Vector3d(0.7, 0.3, 0.1), Eigen::Vector3d(0.8, 0.5, 0.3))), 0u);
 }
 
 }  // namespace
