@@ -40,8 +40,8 @@ jq -r '.results | "\(.void_cells) void cells in \(.void_clusters) clusters, \(.f
 jq -r '.results.views[] | "view \(.rank): sensor at \(.position_m | map(. * 1000 | round / 1000)) looking \(.viewing_direction | map(. * 100 | round / 100)), sees \(.void_cells_seen) void cells (\(.utility_dm3) dm3)"' "$out/views.json"
 jq -r 'if .results.views == [] then "no view: \(.results.reason)" else empty end' "$out/views.json"
 echo "the utility field: $out/utility.ply (pcl_viewer, CloudCompare), $out/utility.png" >&2
-echo "== fvx explore: the closed loop on $scene with the fvx arm at (0.2, 0, 0), at most 15 views" >&2
+echo "== fvx explore: the closed loop on $scene with the fvx arm at the origin, searching for a 6 cm victim, at most 15 views" >&2
 rm -rf "$out/session"
-"$fvx" explore "$scene" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 --arm data/arms/fvx-arm.urdf \
-  --max-views 15 --progress -o "$out/session"
+"$fvx" explore "$scene" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 --arm data/arms/fvx-arm.urdf \
+  --target-size 0.06 --max-views 15 --progress -o "$out/session"
 echo "the session: $out/session (manifest.json, scans/*.pcd, maps/*.ot for octovis, reports/*.json)" >&2

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The paper's Tables I and II beside fvx's: fvx explore runs the closed loop on each paper
-# replica (the fvx arm's capability map at (0.2, 0, 0), 2.5 cm, seed 1, at most 15 views) and
+# replica (the fvx arm's capability map at the origin, 2.5 cm, seed 1, at most 15 views,
+# --target-size the replica's victim's smallest extent) and
 # records a session; fvx replay runs the recorded session again from its files. Each table
 # shows, per view, the paper's integration time, search time, void cells and utility beside
 # the replay's. The paper ran a real Kinect on a real arm (2.8–4.5 s integration per view);
 # here the scenes are replicas and the sensor is simulated, so the void counts are not the
-# paper's: what carries over is the shape (utility falling view by view) and the times.
+# paper's: what carries over is the shape (utility falling view by view to 0) and the times.
 # Usage: scripts/reproduce-tables.sh [OUT_DIR]   (default: a temporary folder, removed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,8 +29,9 @@ for n in 1 2; do
   scene="paper-setting-$n"
   paper="paper_$n"
   echo "== Table $( [ $n = 1 ] && echo I || echo II ): $scene (paper | fvx replay of the fvx explore session)"
-  "$fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 \
-    --arm data/arms/fvx-arm.urdf --seed 1 --max-views 15 --format json -o "$out/$scene-session" \
+  target_size=$([ $n = 1 ] && echo 0.08 || echo 0.06)  # the replica's victim's smallest extent
+  "$fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 \
+    --arm data/arms/fvx-arm.urdf --target-size "$target_size" --seed 1 --max-views 15 --format json -o "$out/$scene-session" \
     > "$out/$scene-explore.json" 2>/dev/null
   "$fvx" replay "$out/$scene-session" -o "$out/$scene-replay" --format json > "$out/$scene-replay.json" 2>/dev/null
   jq -r --argjson paper "${!paper}" --slurpfile explore "$out/$scene-explore.json" '

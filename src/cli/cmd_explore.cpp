@@ -19,6 +19,7 @@
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/exploration_score.hpp"
 #include "fvx/viewpoints/fov.hpp"
+#include "fvx/voids/width.hpp"
 #include "nbv_output.hpp"
 
 namespace fvx::cli {
@@ -54,6 +55,7 @@ const CommandSpec kExploreSpec = {
                  {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
                  {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)"},
              },
+             target_size_options(),
              depth_camera_options(),
              {
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
@@ -173,6 +175,8 @@ int run_explore(const Args& args) {
   nc.count_near_void_cells = args.has("near-voids");
   pc.clusters.seed = nc.seed;
   pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  const double target_size_m = parse_target_size(args, 0.0);
+  pc.min_void_width_cells = voids::void_width_for_target(target_size_m, pc.resolution_m);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
   config.seed = nc.seed;
@@ -289,6 +293,7 @@ int run_explore(const Args& args) {
   manifest.pose_noise_deg = config.pose_noise_deg;
   manifest.registration = pc.register_scans;
   manifest.near_voids = nc.count_near_void_cells;
+  manifest.target_size_m = target_size_m;
   session::write_depth_camera((dir / manifest.sensor).string(), nc.sensor);
   session::write_manifest(dir.string(), manifest);
 
@@ -364,6 +369,7 @@ int run_explore(const Args& args) {
                         {"resolution_m", R}, {"bounds_m", bounds_json(S)},
                         {"pose_noise", {{"sigma_m", config.pose_noise_m}, {"sigma_deg", config.pose_noise_deg}}},
                         {"registration", pc.register_scans}, {"seed", config.seed},
+                        {"target_size_m", target_size_m}, {"min_void_width_cells", pc.min_void_width_cells},
                         {"sensor", depth_camera_json(nc.sensor)}};
     report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
                         {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};

@@ -14,6 +14,7 @@
 #include "fvx/core/pose.hpp"
 #include "fvx/io/visual.hpp"
 #include "fvx/nbv/nbv.hpp"
+#include "fvx/voids/width.hpp"
 
 namespace fvx::cli {
 
@@ -53,6 +54,7 @@ const CommandSpec kNbvSpec = {
                  {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)"},
                  {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)"},
              },
+             target_size_options(),
              depth_camera_options(),
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
@@ -207,6 +209,7 @@ Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, d
                                                      [](const auto& fv) { return !fv.enclosed(); }));
   Json results = {{"bounds_m", bounds_json(a.bounds_m)},
                   {"void_cells", a.void_cells.size()},
+                  {"thin_void_cells", a.thin_void_cells},
                   {"void_clusters", a.void_clusters.size()},
                   {"frontier_cells", a.frontier_cells.size()},
                   {"frontier_voids_open", open},
@@ -260,6 +263,7 @@ int run_nbv(const Args& args) {
   voids::ClusterConfig cluster_config;
   cluster_config.min_fit_score = args.number("min-fit-score", cluster_config.min_fit_score, 0.0, 1.0, true);
   cluster_config.seed = config.seed;
+  const double target_size_m = parse_target_size(args, 0.0);
   check_arm_options(args, "fvx nbv");
   if (config.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
     throw UsageError("fvx nbv: --strategy exhaustive enumerates a capability map: give --capmap");
@@ -283,7 +287,8 @@ int run_nbv(const Args& args) {
     progress.update("fvx nbv: " + stage + (total ? " " + std::to_string(done) + "/" + std::to_string(total) : ""));
   };
   progress.update("fvx nbv: frontiers, voids and frontier-voids of " + args.positional[0]);
-  const frontier_voids::Analysis a = analyse_map(map, bounds, cluster_config);
+  const int void_width = voids::void_width_for_target(target_size_m, map.resolution_m());
+  const frontier_voids::Analysis a = analyse_map(map, bounds, cluster_config, nullptr, void_width);
   const nbv::Result r = nbv::select(map, a, reach, config);
   progress.finish();
   if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);
@@ -295,6 +300,8 @@ int run_nbv(const Args& args) {
                       {"sensor", depth_camera_json(config.sensor)},
                       {"rays", {config.ray_cols, config.ray_rows}},
                       {"valid_poses", config.valid_poses},
+                      {"target_size_m", target_size_m},
+                      {"min_void_width_cells", void_width},
                       {"orientations_per_cell", config.orientations_per_cell},
                       {"jitter_deg", config.jitter_deg},
                       {"clearance_m", config.clearance_m},

@@ -18,6 +18,7 @@
 #include "fvx/scan/load.hpp"
 #include "fvx/session/replay.hpp"
 #include "fvx/session/session.hpp"
+#include "fvx/voids/width.hpp"
 #include "nbv_output.hpp"
 #include "table.hpp"
 
@@ -59,6 +60,7 @@ const CommandSpec kReplaySpec = {
                  {"seed", 0, "N", "seed of the planner (default 1, or the session's)"},
                  {"threads", 0, "N", "threads for the search (default 0: all cores)"},
              },
+             target_size_options(),
              depth_camera_options(),
              {
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
@@ -177,6 +179,7 @@ std::vector<std::string> tum_depth_images(const std::filesystem::path& dir, cons
 struct Inputs {
   std::vector<session::RecordedScan> scans;
   std::string source;
+  double target_size_m = 0.0;  ///< as recorded (0 for recorded scans)
 };
 
 /// A session: the loop's settings as recorded (flags go on top later), the arm from its
@@ -199,6 +202,7 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   nc.seed = m.seed;
   pc.register_scans = m.registration;
   nc.count_near_void_cells = m.near_voids;
+  in.target_size_m = m.target_size_m;
   if (arm_flags) {
     load_arm_inputs(args, "fvx replay", arm_inputs);
   } else if (!m.capmap.empty()) {
@@ -307,6 +311,8 @@ int run_replay(const Args& args) {
   if (args.has("no-register")) pc.register_scans = false;
   if (args.has("near-voids")) nc.count_near_void_cells = true;
   if (args.has("resolution")) pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  const double target_size_m = parse_target_size(args, inputs.target_size_m);
+  pc.min_void_width_cells = voids::void_width_for_target(target_size_m, pc.resolution_m);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   if (args.has("seed")) nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
@@ -395,6 +401,7 @@ int run_replay(const Args& args) {
     report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"resolution_m", R},
                         {"bounds_m", pc.bounds_m ? bounds_json(*pc.bounds_m) : Json(nullptr)},
                         {"registration", pc.register_scans}, {"near_voids", nc.count_near_void_cells},
+                        {"target_size_m", target_size_m},
                         {"seed", nc.seed}, {"sensor", depth_camera_json(nc.sensor)}};
     report["inputs"] = {{"source", source_json}, {"views", scans.size()},
                         {"capmap_urdf_hash", arm_inputs.capability_map

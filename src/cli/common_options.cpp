@@ -143,6 +143,16 @@ double parse_depth_noise(const Args& args) {
   return 0.0;
 }
 
+std::vector<OptionSpec> target_size_options() {
+  return {{"target-size", 0, "M", "the searched object's smallest extent, metres: only void cells in an all-unknown "
+                                  "cube of floor(M/R)-1 cells count, as only those can hide it (default 0: every "
+                                  "void cell, the paper's)"}};
+}
+
+double parse_target_size(const Args& args, double fallback) {
+  return args.has("target-size") ? args.number("target-size", 0.0, 0.0, 10.0) : fallback;
+}
+
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what) {
   const std::vector<double> v = parse_double_list(text, what + " (ex,ey,ez,tx,ty,tz)", 6);
   const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);

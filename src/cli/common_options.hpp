@@ -60,6 +60,12 @@ void load_arm_files(const std::string& capmap_path, const std::string& urdf_path
 /// 0, or 1.4e-3 (Khoshelham & Elberink 2012). UsageError for another model.
 double parse_depth_noise(const Args& args);
 
+/// --target-size M: the searched object's smallest extent, metres; only void cells that
+/// could hide it count (voids/width.hpp). 0 (the default): every void cell.
+std::vector<OptionSpec> target_size_options();
+/// The value of --target-size if given, else `fallback`; UsageError outside [0, 10] m.
+double parse_target_size(const Args& args, double fallback);
+
 /// "ex,ey,ez,tx,ty,tz": a sensor at eye E looking at target T, world z up (optical frame:
 /// x right, y down). UsageError naming `what`.
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);

@@ -38,7 +38,7 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
 
 Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
                  const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
-                 const voids::ClusterConfig& config) {
+                 const voids::ClusterConfig& config, int min_void_width_cells) {
   Analysis a;
   const map::Stats stats = map.stats();
   if (bounds_m) {
@@ -58,6 +58,11 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
   a.frontier_clusters = frontiers::cluster(map, a.frontier_cells);
   if (!void_set) return a;
   a.void_cells = void_set->cells(map, a.bounds_m);
+  if (min_void_width_cells > 1) {
+    const std::size_t all = a.void_cells.size();
+    a.void_cells = voids::cells_in_full_cubes(a.void_cells, min_void_width_cells);
+    a.thin_void_cells = all - a.void_cells.size();
+  }
   a.void_clusters = voids::cluster_voids(map, a.void_cells, config);
   a.frontier_voids = pair_frontier_voids(a.void_clusters, a.frontier_clusters);
   return a;

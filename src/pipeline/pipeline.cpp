@@ -20,6 +20,7 @@ std::vector<std::string> Config::validate() const {
   if (bounds_m && (bounds_m->isEmpty() || !bounds_m->min().allFinite() || !bounds_m->max().allFinite()))
     problems.push_back("bounds_m must be a finite, non-empty box");
   if (!(max_range_m > 0.0)) problems.push_back("max_range_m must be > 0");
+  if (min_void_width_cells < 1 || min_void_width_cells > 16) problems.push_back("min_void_width_cells must be in [1, 16]");
   for (const auto& p : filter.validate()) problems.push_back("filter: " + p);
   if (register_scans)
     for (const auto& p : registration.validate()) problems.push_back("registration: " + p);
@@ -82,7 +83,8 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
     state.frontier_set.update(state.map, integration.changes);
     state.void_set.update(state.map, integration.changes);
   }
-  r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m, config.clusters);
+  r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m, config.clusters,
+                                       config.min_void_width_cells);
   r.timing.frontiers_voids_s = seconds_since(t0);
 
   // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).

@@ -86,6 +86,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["pose_noise"] = {{"sigma_m", m.pose_noise_m}, {"sigma_deg", m.pose_noise_deg}};
   j["registration"] = m.registration;
   j["near_voids"] = m.near_voids;
+  j["target_size_m"] = m.target_size_m;
   Json views = Json::array();
   for (const ManifestView& v : m.views) {
     Json jv = {{"view", v.view}, {"scan", v.scan}, {"map", v.map}, {"report", v.report},
@@ -135,6 +136,10 @@ Manifest read_manifest(const std::string& dir) {
   if (j.contains("near_voids")) {
     if (!j["near_voids"].is_boolean()) r.fail("'near_voids' must be true or false");
     m.near_voids = j["near_voids"].get<bool>();
+  }
+  if (j.contains("target_size_m")) {
+    m.target_size_m = r.number(j, "target_size_m");
+    if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
   }
   const Json& views = r.at(j, "views");
   if (!views.is_array()) r.fail("'views' must be an array");

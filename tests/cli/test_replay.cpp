@@ -48,6 +48,38 @@ json without_timing(json j) {
   return j;
 }
 
+TEST(CliReplay, ATargetSizeIsRecordedAndReplayed) {
+  const TempDir dir;
+  const RunResult e = run_fvx(dir, "explore" + kScene + kArm + " --target-size 0.1 --max-views 3 --format json -o session");
+  ASSERT_EQ(e.status, 0) << e.err;
+  const json explored = json::parse(e.out);
+  EXPECT_EQ(explored["config"]["min_void_width_cells"], 3);  // floor(0.1 / 0.025) - 1
+  EXPECT_EQ(session::read_manifest(dir / "session").target_size_m, 0.1);
+  // Slivers left out: the first view's map holds void cells no 3-cell cube of void holds.
+  const json first = report(dir, "session/reports/view000.json")["results"];
+  EXPECT_GT(first["thin_void_cells"].get<int>(), 0);
+  const RunResult r = run_fvx(dir, "replay session -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json replayed = json::parse(r.out);
+  EXPECT_EQ(replayed["config"]["target_size_m"], 0.1);
+  ASSERT_EQ(replayed["results"]["rows"].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const json& a = explored["results"]["rows"][i];
+    const json& b = replayed["results"]["rows"][i];
+    EXPECT_EQ(b["void_cells"], a["void_cells"]) << "view " << i + 1;
+    EXPECT_EQ(b["map_void_cells"], a["map_void_cells"]) << "view " << i + 1;
+  }
+  // The default counts every void cell: more of them in the same first map.
+  const RunResult all = run_fvx(dir, "replay session -o out2 --target-size 0 --to 1 --format json");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_GT(json::parse(all.out)["results"]["rows"][0]["map_void_cells"].get<int>(),
+            explored["results"]["rows"][0]["map_void_cells"].get<int>());
+  const RunResult bad = run_fvx(dir, "replay session -o out3 --target-size -1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--target-size"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out3"));
+}
+
 TEST(CliReplay, ASessionReplaysToTheSameTableAndTheSameViews) {
   const TempDir dir;
   const json explored = record(dir)["results"]["rows"];

@@ -11,6 +11,7 @@
 #include "fvx/frontiers/frontiers.hpp"
 #include "fvx/voids/clusters.hpp"
 #include "fvx/voids/voids.hpp"
+#include "fvx/voids/width.hpp"
 
 namespace fvx::frontier_voids {
 
@@ -31,6 +32,9 @@ struct Analysis {
   std::vector<map::VoxelKey> frontier_cells;          ///< in S, key order
   std::vector<frontiers::Cluster> frontier_clusters;
   std::vector<map::VoxelKey> void_cells;              ///< in S, key order
+  /// Void cells left out of void_cells: in no all-void cube of min_void_width_cells (they
+  /// cannot hide a target that size; voids/width.hpp). 0 when the width is 1.
+  std::size_t thin_void_cells = 0;
   std::vector<voids::VoidCluster> void_clusters;
   std::vector<FrontierVoid> frontier_voids;           ///< one per void cluster
   std::vector<std::string> warnings;                  ///< why a result is empty
@@ -39,10 +43,11 @@ struct Analysis {
 /// Clusters and pairs the current frontier and void sets within `bounds_m` (default: the
 /// box of the map's known cells); without a void set (nullptr), frontiers only. Empty
 /// results come with a warning saying why (no free cells, no occupied cells, a flat hull,
-/// bounds without known cells).
+/// bounds without known cells). `min_void_width_cells` > 1 keeps only the void cells that
+/// could hide a target that wide (voids::cells_in_full_cubes); 1 is the paper's void set.
 Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
                  const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
-                 const voids::ClusterConfig& config);
+                 const voids::ClusterConfig& config, int min_void_width_cells = 1);
 
 /// Utility in dm³ (1 dm³ = 10⁻³ m³): the unit of the paper's tables.
 inline double to_dm3(double m3) { return m3 * 1000.0; }

@@ -29,6 +29,9 @@ struct Config {
   bool register_scans = false;                     ///< step 2; off when the poses are exact
   registration::Config registration;
   voids::ClusterConfig clusters;                   ///< Eq. 2 region growing
+  /// Only void cells in an all-void cube this many cells wide count (frontier_voids::analyse;
+  /// voids::void_width_for_target gives it for a target size). 1: every void cell (the paper).
+  int min_void_width_cells = 1;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
   /// Step 7, the next-best-view search; false: the step ends with frontiers and voids (its
   /// nbv result is empty, with the reason "not searched").

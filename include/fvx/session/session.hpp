@@ -50,6 +50,9 @@ struct Manifest {
   /// The planner's U counted void cells nearer than the sensor's minimum depth
   /// (nbv::Config::count_near_void_cells; fvx explore --near-voids). Absent: false.
   bool near_voids = false;
+  /// Only void cells that could hide an object this large counted (fvx explore
+  /// --target-size; voids/width.hpp), metres. Absent: 0, every void cell.
+  double target_size_m = 0.0;
   std::vector<ManifestView> views;
 };
 

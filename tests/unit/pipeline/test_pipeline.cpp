@@ -3,6 +3,7 @@
 // view left unknown leave U; registration undoes perturbed priors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 
@@ -10,6 +11,7 @@
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/viewpoints/fov.hpp"
+#include "fvx/voids/width.hpp"
 
 namespace fvx::pipeline {
 namespace {
@@ -64,6 +66,27 @@ TEST(Pipeline, IncrementalAnalysisEqualsFromScratch) {
   EXPECT_EQ(last.analysis.void_clusters.size(), scratch.void_clusters.size());
   ASSERT_FALSE(last.nbv.views.empty()) << last.nbv.reason;
   EXPECT_GT(last.changed_cells, 0u);
+}
+
+TEST(Pipeline, AWideVoidCountsOnlyCellsThatCouldHideTheTarget) {
+  const Crates crates;
+  Config config = crates.config();
+  config.min_void_width_cells = 2;
+  State state(config.resolution_m);
+  StepResult last;
+  for (std::size_t i = 0; i < crates.views.size(); ++i)
+    last = run_step(state, render(*crates.caster, crates.views[i], int(i)), std::nullopt, config);
+  voids::VoidSet vs;
+  vs.rebuild(state.map);
+  const std::vector<map::VoxelKey> all = vs.cells(state.map, config.bounds_m);
+  EXPECT_EQ(last.analysis.void_cells, voids::cells_in_full_cubes(all, 2));
+  EXPECT_GT(last.analysis.thin_void_cells, 0u);
+  EXPECT_EQ(last.analysis.thin_void_cells + last.analysis.void_cells.size(), all.size());
+  for (const auto& c : last.analysis.void_clusters)
+    for (const map::VoxelKey& k : c.cells)
+      EXPECT_TRUE(std::binary_search(last.analysis.void_cells.begin(), last.analysis.void_cells.end(), k));
+  config.min_void_width_cells = 0;
+  EXPECT_FALSE(config.validate().empty());
 }
 
 TEST(Pipeline, ABlankScanChangesNothing) {

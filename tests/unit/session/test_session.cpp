@@ -37,6 +37,8 @@ TEST(Session, ManifestRoundTrips) {
   m.pose_noise_m = 0.02;
   m.pose_noise_deg = 2.0;
   m.registration = true;
+  m.near_voids = true;
+  m.target_size_m = 0.08;
   for (int i = 0; i < 3; ++i) {
     ManifestView v;
     v.view = i;
@@ -61,6 +63,8 @@ TEST(Session, ManifestRoundTrips) {
   EXPECT_EQ(r.seed, 42u);
   EXPECT_EQ(r.pose_noise_deg, 2.0);
   EXPECT_TRUE(r.registration);
+  EXPECT_TRUE(r.near_voids);
+  EXPECT_EQ(r.target_size_m, 0.08);
   ASSERT_EQ(r.views.size(), 3u);
   for (int i = 0; i < 3; ++i) {
     EXPECT_EQ(r.views[i].scan, m.views[i].scan);
