@@ -1,5 +1,6 @@
 // fvx explore as users run it: the per-view table, the session directory read back (manifest,
-// scans with VIEWPOINT, maps OctoMap loads), and bad input refused before anything is written.
+// scans with VIEWPOINT, maps OctoMap loads), the command line ending with utility 0 on
+// both paper replicas, and bad input refused before anything is written.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -78,6 +79,27 @@ TEST(CliExplore, WritesTheTableAndASessionThatReadsBack) {
     EXPECT_LE(row["known_fraction"].get<double>(), 1.0);
     EXPECT_LE(row["void_cells_in_solid"].get<int>(), row["void_cells"].get<int>());
     EXPECT_GE(row["free_cells_in_solid"].get<int>(), 0);
+  }
+}
+
+// The command line on both replicas (the arm at the origin, each victim's size): the
+// loop finds the victim and ends as the paper's did, with utility 0, within 15 views.
+TEST(CliExplore, ThePaperReplicasEndWithUtilityZero) {
+  const TempDir dir;
+  struct Run {
+    std::string scene, target_size, seed;
+  };
+  for (const Run& run : {Run{"paper-setting-1", "0.08", "2"}, Run{"paper-setting-2", "0.06", "3"}}) {
+    const RunResult r = run_fvx(dir, "explore '" + source("data/scenes/" + run.scene + ".ply") + "'" +
+                                         arm("0,0,0,0,0,0") + " --target-size " + run.target_size + " --seed " +
+                                         run.seed + " --format json -o " + run.scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json results = json::parse(r.out)["results"];
+    EXPECT_TRUE(results["utility_exhausted"].get<bool>()) << run.scene << ": " << results["end"];
+    EXPECT_LE(results["views"].get<int>(), 15) << run.scene;
+    EXPECT_EQ(results["rows"].back()["void_cells"], 0) << run.scene;
+    EXPECT_TRUE(results["rows"].back()["target_seen"].get<bool>()) << run.scene;
+    EXPECT_GE(results["rows"].back()["known_fraction"].get<double>(), 0.95) << run.scene;
   }
 }
 
