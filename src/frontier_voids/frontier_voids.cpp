@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <unordered_map>
 
+#include "fvx/voids/width.hpp"
+
 namespace fvx::frontier_voids {
 
 std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidCluster>& voids,

@@ -11,7 +11,6 @@
 #include "fvx/frontiers/frontiers.hpp"
 #include "fvx/voids/clusters.hpp"
 #include "fvx/voids/voids.hpp"
-#include "fvx/voids/width.hpp"
 
 namespace fvx::frontier_voids {
 
