@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <unordered_map>
+
+#include "fvx/map/key_index.hpp"
 
 #include "fvx/voids/width.hpp"
 
@@ -10,16 +11,18 @@ namespace fvx::frontier_voids {
 
 std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidCluster>& voids,
                                               const std::vector<frontiers::Cluster>& frontier_clusters) {
-  std::unordered_map<std::uint64_t, int> frontier_of;
-  for (const auto& c : frontier_clusters)
-    for (const auto& k : c.cells) frontier_of.emplace(frontiers::pack(k), c.id);
-  std::vector<FrontierVoid> out;
-  out.reserve(voids.size());
+  // From the frontier side: a real map has ten times more void cells than frontier cells.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
+  for (const auto& v : voids)
+    for (const auto& k : v.cells) entries.emplace_back(frontiers::pack(k), std::uint32_t(v.id));
+  const map::KeyIndex void_of(entries);
+  std::vector<FrontierVoid> out(voids.size());
   for (const auto& v : voids) {
-    FrontierVoid fv;
-    fv.void_id = v.id;
-    fv.utility_m3 = v.volume_m3;
-    for (const auto& k : v.cells)
+    out[std::size_t(v.id)].void_id = v.id;
+    out[std::size_t(v.id)].utility_m3 = v.volume_m3;
+  }
+  for (const auto& c : frontier_clusters)
+    for (const auto& k : c.cells)
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
@@ -27,14 +30,11 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
             if (moved == 0 || moved == 3) continue;  // faces and edges, not corners
             const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
             if (x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) continue;
-            const auto it = frontier_of.find(
-                frontiers::pack({std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)}));
-            if (it != frontier_of.end()) fv.frontier_ids.push_back(it->second);
+            const std::uint32_t id = void_of.find(frontiers::pack({std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)}));
+            if (id == map::KeyIndex::kMissing) continue;
+            std::vector<int>& ids = out[id].frontier_ids;
+            if (ids.empty() || ids.back() != c.id) ids.push_back(c.id);  // clusters come in id order
           }
-    std::sort(fv.frontier_ids.begin(), fv.frontier_ids.end());
-    fv.frontier_ids.erase(std::unique(fv.frontier_ids.begin(), fv.frontier_ids.end()), fv.frontier_ids.end());
-    out.push_back(std::move(fv));
-  }
   return out;
 }
 

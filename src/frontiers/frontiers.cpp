@@ -4,6 +4,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "fvx/map/key_index.hpp"
+
 namespace fvx::frontiers {
 namespace {
 
@@ -80,9 +82,9 @@ std::vector<map::VoxelKey> FrontierSet::cells(const map::OccupancyMap& map,
 
 std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells) {
   // Union-find over the cells' indices; neighbours are found through a key → index table.
-  std::unordered_map<std::uint64_t, std::size_t> index;
-  index.reserve(cells.size() * 2);
-  for (std::size_t i = 0; i < cells.size(); ++i) index.emplace(pack(cells[i]), i);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) entries[i] = {pack(cells[i]), std::uint32_t(i)};
+  const map::KeyIndex index(entries);
   std::vector<std::size_t> parent(cells.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::size_t i) {
@@ -96,9 +98,9 @@ std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map
           if (!dx && !dy && !dz) continue;
           const auto n = neighbour(cells[i], dx, dy, dz);
           if (!n) continue;
-          const auto it = index.find(pack(*n));
-          if (it == index.end()) continue;
-          const std::size_t a = find(i), b = find(it->second);
+          const std::uint32_t j = index.find(pack(*n));
+          if (j == map::KeyIndex::kMissing) continue;
+          const std::size_t a = find(i), b = find(j);
           if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the root is the smallest index
         }
   }

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <deque>
 #include <random>
-#include <unordered_map>
 
 #include "fvx/core/error.hpp"
+#include "fvx/map/key_index.hpp"
 #include "fvx/frontiers/frontiers.hpp"  // pack
 
 namespace fvx::voids {
@@ -62,9 +62,10 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
                                        const ClusterConfig& config) {
   FVX_ASSERT(config.validate().empty(), "invalid ClusterConfig");
   const double R = map.resolution_m();
-  std::unordered_map<std::uint64_t, int> owner;  // cell → cluster, −1 while unassigned
-  owner.reserve(cells.size() * 2);
-  for (const auto& k : cells) owner.emplace(frontiers::pack(k), -1);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) entries[i] = {frontiers::pack(cells[i]), std::uint32_t(i)};
+  const map::KeyIndex index(entries);         // cell → its index in `cells`
+  std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
 
   std::vector<std::size_t> order(cells.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -73,12 +74,12 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
 
   std::vector<std::vector<map::VoxelKey>> grown;
   for (const std::size_t start : order) {
-    if (owner.at(frontiers::pack(cells[start])) >= 0) continue;
+    if (owner[start] >= 0) continue;
     const int id = int(grown.size());
     grown.emplace_back();
     Moments m{map.center_of(cells[start])};
     std::deque<map::VoxelKey> queue{cells[start]};
-    owner[frontiers::pack(cells[start])] = id;
+    owner[start] = id;
     m.add(map.center_of(cells[start]));
     while (!queue.empty()) {
       const map::VoxelKey k = queue.front();
@@ -90,13 +91,13 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
             const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
             if ((!dx && !dy && !dz) || x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) continue;
             const map::VoxelKey n{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
-            const auto it = owner.find(frontiers::pack(n));
-            if (it == owner.end() || it->second >= 0) continue;
+            const std::uint32_t j = index.find(frontiers::pack(n));
+            if (j == map::KeyIndex::kMissing || owner[j] >= 0) continue;
             Moments with = m;
             with.add(map.center_of(n));
             if (fit_score(with, R) < config.min_fit_score) continue;  // stays for a later seed
             m = with;
-            it->second = id;
+            owner[j] = id;
             queue.push_back(n);
           }
     }
