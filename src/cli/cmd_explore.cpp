@@ -56,6 +56,7 @@ const CommandSpec kExploreSpec = {
                  {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)"},
              },
              target_size_options(),
+             accumulation_options(),
              depth_camera_options(),
              {
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
@@ -167,6 +168,7 @@ int run_explore(const Args& args) {
   nc.sensor = parse_depth_camera(args, "explore");
   nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  parse_accumulation(args, nc);
   nc.view_bounds_m = parse_bounds(args, "view-bounds");
   if (args.has("near-voids") && args.has("far-voids-only"))
     throw UsageError("--near-voids and --far-voids-only contradict each other: give one");
@@ -294,6 +296,8 @@ int run_explore(const Args& args) {
   manifest.registration = pc.register_scans;
   manifest.near_voids = nc.count_near_void_cells;
   manifest.target_size_m = target_size_m;
+  manifest.accumulation = utility::to_string(nc.accumulation);
+  manifest.max_utility_vectors = nc.max_utility_vectors;
   session::write_depth_camera((dir / manifest.sensor).string(), nc.sensor);
   session::write_manifest(dir.string(), manifest);
 
@@ -371,6 +375,7 @@ int run_explore(const Args& args) {
                         {"registration", pc.register_scans}, {"seed", config.seed},
                         {"target_size_m", target_size_m}, {"min_void_width_cells", pc.min_void_width_cells},
                         {"sensor", depth_camera_json(nc.sensor)}};
+    report["config"].update(accumulation_json(nc));
     report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
                         {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
     Json jrows = Json::array();

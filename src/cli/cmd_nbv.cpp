@@ -55,6 +55,7 @@ const CommandSpec kNbvSpec = {
                  {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)"},
              },
              target_size_options(),
+             accumulation_options(),
              depth_camera_options(),
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
@@ -214,6 +215,7 @@ Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, d
                   {"frontier_cells", a.frontier_cells.size()},
                   {"frontier_voids_open", open},
                   {"utility_vectors", r.utility_vectors},
+                  {"exact_utility_vectors", r.exact_utility_vectors},
                   {"poses_scored", r.poses_scored},
                   {"best_void_cells_seen", r.views.empty() ? 0 : r.views.front().void_cells_seen},
                   {"best_utility_dm3", r.views.empty() ? 0.0 : views.front()["utility_dm3"].get<double>()},
@@ -259,6 +261,7 @@ int run_nbv(const Args& args) {
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   config.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  parse_accumulation(args, config);
   const auto bounds = parse_bounds(args);
   voids::ClusterConfig cluster_config;
   cluster_config.min_fit_score = args.number("min-fit-score", cluster_config.min_fit_score, 0.0, 1.0, true);
@@ -315,6 +318,8 @@ int run_nbv(const Args& args) {
                       {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
                       {"min_fit_score", cluster_config.min_fit_score},
                       {"seed", config.seed},
+                      {"accumulation", utility::to_string(config.accumulation)},
+                      {"max_utility_vectors", config.max_utility_vectors},
                       {"top", config.top},
                       {"T_world_base", reach ? pose_json(T_world_base) : Json(nullptr)}};
   report["inputs"] = {{"map", args.positional[0]},

@@ -61,6 +61,7 @@ const CommandSpec kReplaySpec = {
                  {"threads", 0, "N", "threads for the search (default 0: all cores)"},
              },
              target_size_options(),
+             accumulation_options(),
              depth_camera_options(),
              {
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
@@ -203,6 +204,8 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   pc.register_scans = m.registration;
   nc.count_near_void_cells = m.near_voids;
   in.target_size_m = m.target_size_m;
+  nc.accumulation = utility::parse_accumulation(m.accumulation, session.string() + "/manifest.json: accumulation");
+  nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
   if (arm_flags) {
     load_arm_inputs(args, "fvx replay", arm_inputs);
   } else if (!m.capmap.empty()) {
@@ -317,6 +320,7 @@ int run_replay(const Args& args) {
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   if (args.has("seed")) nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  parse_accumulation(args, nc);  // over the recording's
   pc.clusters.seed = nc.seed;
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
@@ -403,6 +407,7 @@ int run_replay(const Args& args) {
                         {"registration", pc.register_scans}, {"near_voids", nc.count_near_void_cells},
                         {"target_size_m", target_size_m},
                         {"seed", nc.seed}, {"sensor", depth_camera_json(nc.sensor)}};
+    report["config"].update(accumulation_json(nc));
     report["inputs"] = {{"source", source_json}, {"views", scans.size()},
                         {"capmap_urdf_hash", arm_inputs.capability_map
                                                  ? Json(arm_inputs.capability_map->header().urdf_hash)

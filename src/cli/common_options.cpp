@@ -149,6 +149,26 @@ std::vector<OptionSpec> target_size_options() {
                                   "void cell, the paper's)"}};
 }
 
+std::vector<OptionSpec> accumulation_options() {
+  return {{"accumulation", 0, "MODE", "Algorithm 1's accumulation: sampled (default: above --utility-vectors, "
+                                      "a stratified sample of each frontier-void's frontier cells, weighted so "
+                                      "that the expected field is the exact one) or exact (every utility vector, "
+                                      "the paper's; minutes on large maps)"},
+          {"utility-vectors", 0, "N", "sampled: trace about N utility vectors at most (default 2097152); "
+                                      "under it the field is exact"}};
+}
+
+void parse_accumulation(const Args& args, nbv::Config& config) {
+  if (args.has("accumulation")) config.accumulation = utility::parse_accumulation(args.get("accumulation"));
+  config.max_utility_vectors = std::size_t(
+      args.integer("utility-vectors", (long long)config.max_utility_vectors, 7, std::numeric_limits<long long>::max()));
+}
+
+Json accumulation_json(const nbv::Config& config) {
+  return {{"accumulation", utility::to_string(config.accumulation)},
+          {"max_utility_vectors", config.max_utility_vectors}};
+}
+
 double parse_target_size(const Args& args, double fallback) {
   return args.has("target-size") ? args.number("target-size", 0.0, 0.0, 10.0) : fallback;
 }

@@ -63,6 +63,12 @@ double parse_depth_noise(const Args& args);
 /// --target-size M: the searched object's smallest extent, metres; only void cells that
 /// could hide it count (voids/width.hpp). 0 (the default): every void cell.
 std::vector<OptionSpec> target_size_options();
+/// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp).
+std::vector<OptionSpec> accumulation_options();
+/// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
+void parse_accumulation(const Args& args, nbv::Config& config);
+/// {"accumulation": …, "max_utility_vectors": …} for a report's config.
+Json accumulation_json(const nbv::Config& config);
 /// The value of --target-size if given, else `fallback`; UsageError outside [0, 10] m.
 double parse_target_size(const Args& args, double fallback);
 

@@ -42,6 +42,7 @@ std::vector<std::string> Config::validate() const {
   if (exhaustive_rolls < 1) problems.push_back("exhaustive_rolls must be >= 1");
   if (random_tries < 1) problems.push_back("random_tries must be >= 1");
   if (top < 1) problems.push_back("top must be >= 1");
+  if (max_utility_vectors < 7) problems.push_back("max_utility_vectors must be >= 7");
   return problems;
 }
 
@@ -94,12 +95,16 @@ Result select_frontier_void(Search& s, Result result) {
   utility_config.sensor_range_m = s.config.sensor.depth_max_m;  // s_r
   if (!s.config.count_near_void_cells) utility_config.min_range_m = s.config.sensor.depth_min_m;
   utility_config.threads = s.config.threads;
+  utility_config.accumulation = s.config.accumulation;
+  utility_config.max_vectors = s.config.max_utility_vectors;
+  utility_config.seed = s.config.seed;
   // Void cells a taken view left hidden no longer count in U; they leave u_i too, or a void
   // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
   const std::optional<frontier_voids::Analysis> visible =
       s.config.hidden_void_cells.empty() ? std::nullopt : std::optional(s.visible_utility());
   const utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
   result.utility_vectors = field.vectors;
+  result.exact_utility_vectors = field.exact_vectors;
   result.timing.accumulation_s = seconds_since(t0);
 
   t0 = Clock::now();

@@ -87,6 +87,8 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["registration"] = m.registration;
   j["near_voids"] = m.near_voids;
   j["target_size_m"] = m.target_size_m;
+  j["accumulation"] = m.accumulation;
+  j["max_utility_vectors"] = m.max_utility_vectors;
   Json views = Json::array();
   for (const ManifestView& v : m.views) {
     Json jv = {{"view", v.view}, {"scan", v.scan}, {"map", v.map}, {"report", v.report},
@@ -140,6 +142,15 @@ Manifest read_manifest(const std::string& dir) {
   if (j.contains("target_size_m")) {
     m.target_size_m = r.number(j, "target_size_m");
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
+  }
+  if (j.contains("accumulation")) {
+    m.accumulation = r.text(j, "accumulation");
+    if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");
+  }
+  if (j.contains("max_utility_vectors")) {
+    const Json& v = j["max_utility_vectors"];
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 7) r.fail("'max_utility_vectors' must be an integer >= 7");
+    m.max_utility_vectors = v.get<std::uint64_t>();
   }
   const Json& views = r.at(j, "views");
   if (!views.is_array()) r.fail("'views' must be an array");

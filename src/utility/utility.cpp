@@ -11,11 +11,20 @@
 
 namespace fvx::utility {
 
+const char* to_string(Accumulation a) { return a == Accumulation::Exact ? "exact" : "sampled"; }
+
+Accumulation parse_accumulation(const std::string& name, const std::string& what) {
+  if (name == "exact") return Accumulation::Exact;
+  if (name == "sampled") return Accumulation::Sampled;
+  throw UsageError(what + " '" + name + "': expected exact or sampled");
+}
+
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems;
   if (!(sensor_range_m > 0.0) || !std::isfinite(sensor_range_m)) problems.push_back("sensor_range_m must be > 0 m");
   if (!(min_range_m >= 0.0) || !(min_range_m < sensor_range_m))
     problems.push_back("min_range_m must be >= 0 m and below sensor_range_m");
+  if (max_vectors < 7) problems.push_back("max_vectors must be >= 7 (one frontier cell's corners)");
   return problems;
 }
 
@@ -35,38 +44,104 @@ struct Partial {
   std::vector<std::size_t> touched;
 };
 
-/// Algorithm 1 for one frontier-void: every corner, every frontier cell of its clusters.
+/// Interleaves the bits of a key (x lowest): cells close in this order are close in space.
+std::uint64_t morton(const map::VoxelKey& k) {
+  std::uint64_t code = 0;
+  for (int b = 0; b < 16; ++b)
+    code |= (std::uint64_t(k.x >> b & 1) << (3 * b)) | (std::uint64_t(k.y >> b & 1) << (3 * b + 1)) |
+            (std::uint64_t(k.z >> b & 1) << (3 * b + 2));
+  return code;
+}
+
+/// Per frontier cluster, its cells inside the grid in Morton order: contiguous strata of
+/// this order are compact patches of the frontier surface.
+std::vector<std::vector<map::VoxelKey>> starts_per_cluster(const map::DenseGrid& grid,
+                                                           const frontier_voids::Analysis& a) {
+  std::vector<std::vector<map::VoxelKey>> out(a.frontier_clusters.size());
+  for (std::size_t c = 0; c < out.size(); ++c) {
+    std::vector<std::pair<std::uint64_t, map::VoxelKey>> coded;
+    for (const map::VoxelKey& k : a.frontier_clusters[c].cells)
+      if (grid.contains(k)) coded.emplace_back(morton(k), k);
+    std::sort(coded.begin(), coded.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+    for (const auto& [code, k] : coded) out[c].push_back(k);
+  }
+  return out;
+}
+
+std::uint64_t splitmix64(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/// Fixed point of the per-cell sums: a vector adds weight·2^kFraction, an integer, so that
+/// sums do not depend on the order of addition or the number of threads. Exact vectors
+/// weigh u_i/R³ cells, an integer, and lose nothing.
+constexpr int kFraction = 8;
+
+/// What one frontier-void traces: S of its N frontier cells, each vector weighing
+/// u_i·N/S (in cells, fixed point).
+struct Plan {
+  std::size_t samples = 0;   ///< S
+  std::uint64_t weight = 0;  ///< fixed point
+};
+
+/// The frontier cells of fv_index's clusters that the plan draws: one per stratum of
+/// `starts` (concatenated in frontier_ids order), at a seeded place within it.
+std::vector<map::VoxelKey> draw(const std::vector<const std::vector<map::VoxelKey>*>& lists, std::size_t n,
+                                std::size_t samples, std::uint64_t seed, std::int32_t fv_index) {
+  std::vector<map::VoxelKey> out;
+  out.reserve(samples);
+  auto at = [&](std::size_t i) -> const map::VoxelKey& {
+    for (const auto* l : lists) {
+      if (i < l->size()) return (*l)[i];
+      i -= l->size();
+    }
+    FVX_ASSERT(false, "stratum index beyond the frontier cells");
+    return lists.front()->front();
+  };
+  if (samples >= n) {
+    for (const auto* l : lists) out.insert(out.end(), l->begin(), l->end());
+    return out;
+  }
+  std::uint64_t state = seed ^ (std::uint64_t(fv_index) + 1) * 0xD1B54A32D192ED03ull;
+  for (std::size_t j = 0; j < samples; ++j) {
+    const std::size_t lo = j * n / samples, hi = (j + 1) * n / samples;  // hi > lo as n > samples
+    const std::size_t pick = lo + std::size_t((splitmix64(state) >> 11) * 0x1.0p-53 * double(hi - lo));
+    out.push_back(at(std::min(pick, hi - 1)));
+  }
+  return out;
+}
+
+/// Algorithm 1 for one frontier-void: every corner, from each of `starts`.
 void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analysis& a, std::int32_t fv_index,
-                         double sensor_range_m, double min_range_m, Partial& out) {
+                         const std::vector<map::VoxelKey>& starts, std::uint64_t weight, double sensor_range_m,
+                         double min_range_m, Partial& out) {
   const auto& fv = a.frontier_voids[std::size_t(fv_index)];
-  const double R = grid.resolution_m();
-  const auto u = std::uint64_t(std::llround(fv.utility_m3 / (R * R * R)));
   const auto corners = a.void_clusters[std::size_t(fv.void_id)].corners();
-  for (const int id : fv.frontier_ids) {
-    for (const map::VoxelKey& f : a.frontier_clusters[std::size_t(id)].cells) {
-      if (!grid.contains(f)) continue;
-      const Eigen::Vector3d start = grid.center_of(f);
-      for (const Eigen::Vector3d& c : corners) {
-        const Eigen::Vector3d dir = start - c;
-        if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
-        ++out.vectors;
-        bool far_enough = min_range_m <= 0.0;  // cells along a ray only get farther
-        grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
-          if (s != map::VoxelState::Free) return false;
-          if (!far_enough) {
-            far_enough = (grid.center_of(grid.key(index)) - start).squaredNorm() >= min_range_m * min_range_m;
-            if (!far_enough) return true;
-          }
-          out.util_cells[index] += u;
-          std::uint64_t& word = out.touched_bits[index >> 6];
-          const std::uint64_t bit = std::uint64_t(1) << (index & 63);
-          if (!(word & bit)) {
-            word |= bit;
-            out.touched.push_back(index);
-          }
-          return true;
-        });
-      }
+  for (const map::VoxelKey& f : starts) {
+    const Eigen::Vector3d start = grid.center_of(f);
+    for (const Eigen::Vector3d& c : corners) {
+      const Eigen::Vector3d dir = start - c;
+      if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
+      ++out.vectors;
+      bool far_enough = min_range_m <= 0.0;  // cells along a ray only get farther
+      grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
+        if (s != map::VoxelState::Free) return false;
+        if (!far_enough) {
+          far_enough = (grid.center_of(grid.key(index)) - start).squaredNorm() >= min_range_m * min_range_m;
+          if (!far_enough) return true;
+        }
+        out.util_cells[index] += weight;
+        std::uint64_t& word = out.touched_bits[index >> 6];
+        const std::uint64_t bit = std::uint64_t(1) << (index & 63);
+        if (!(word & bit)) {
+          word |= bit;
+          out.touched.push_back(index);
+        }
+        return true;
+      });
     }
   }
   // This thread takes frontier-voids in global order: append to each cell's first free slot.
@@ -79,6 +154,51 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
       }
   }
   out.touched.clear();
+}
+
+/// Samples per frontier-void for a budget of `cells` frontier cells in all (7 vectors
+/// each), in proportion to u_i·N_i, none above its N_i, none below kMinSamples: water-
+/// filling, so that what a small frontier-void cannot use goes to the others.
+std::vector<std::size_t> shares(const std::vector<double>& mass, const std::vector<std::size_t>& n, double cells) {
+  std::vector<std::size_t> s(n.size(), 0);
+  std::vector<bool> fixed(n.size(), false);
+  for (bool changed = true; changed;) {
+    changed = false;
+    double free_mass = 0, free_cells = cells;
+    for (std::size_t i = 0; i < n.size(); ++i) (fixed[i] ? free_cells -= double(s[i]) : free_mass += mass[i]);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      if (fixed[i]) continue;
+      const double share = free_mass > 0 ? std::max(0.0, free_cells) * mass[i] / free_mass : 0.0;
+      s[i] = std::clamp<std::size_t>(std::size_t(std::ceil(share)), std::min(n[i], kMinSamples), n[i]);
+      if (s[i] == n[i] || s[i] == std::min(n[i], kMinSamples)) {  // bounded: settle it, redistribute the rest
+        fixed[i] = true;
+        changed = true;
+      }
+    }
+  }
+  return s;
+}
+
+/// How many frontier cells each frontier-void in `order` traces from, and at what weight.
+std::vector<Plan> plan(const frontier_voids::Analysis& a, const std::vector<std::int32_t>& order,
+                       const std::vector<std::size_t>& n, double R, const Config& config, std::size_t& exact) {
+  exact = 0;
+  std::vector<double> mass(order.size());  // u_i·N_i: the frontier-void's share of the exact field
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    exact += 7 * n[i];
+    mass[i] = a.frontier_voids[std::size_t(order[i])].utility_m3 * double(n[i]);
+  }
+  const bool all = config.accumulation == Accumulation::Exact || exact <= config.max_vectors;
+  const std::vector<std::size_t> samples = all ? n : shares(mass, n, double(config.max_vectors) / 7.0);
+  std::vector<Plan> plans(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto u_cells = std::uint64_t(std::llround(a.frontier_voids[std::size_t(order[i])].utility_m3 / (R * R * R)));
+    plans[i].samples = samples[i];
+    plans[i].weight = samples[i] == 0 ? 0
+                                      : std::uint64_t(std::llround(double(u_cells) * double(n[i]) /
+                                                                   double(samples[i]) * double(1u << kFraction)));
+  }
+  return plans;
 }
 
 }  // namespace
@@ -96,6 +216,14 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   std::vector<std::size_t> rank(a.frontier_voids.size(), 0);
   for (std::size_t i = 0; i < order.size(); ++i) rank[std::size_t(order[i])] = i;
 
+  const double R = grid.resolution_m();
+  const auto starts = starts_per_cluster(grid, a);
+  std::vector<std::size_t> frontier_cells(order.size(), 0);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (const int id : a.frontier_voids[std::size_t(order[i])].frontier_ids) frontier_cells[i] += starts[std::size_t(id)].size();
+  std::size_t exact_vectors = 0;
+  const std::vector<Plan> plans = plan(a, order, frontier_cells, R, config, exact_vectors);
+
   Slots none;
   none.fill(-1);
   const unsigned threads = std::max(
@@ -109,7 +237,10 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
     part.touched_bits.assign(grid.cell_count() / 64 + 1, 0);
     for (std::size_t i = next++; i < order.size(); i = next++) {
       if (report && config.progress) config.progress(i, order.size());
-      trace_frontier_void(grid, a, order[i], config.sensor_range_m, config.min_range_m, part);
+      std::vector<const std::vector<map::VoxelKey>*> lists;
+      for (const int id : a.frontier_voids[std::size_t(order[i])].frontier_ids) lists.push_back(&starts[std::size_t(id)]);
+      const auto drawn = draw(lists, frontier_cells[i], plans[i].samples, config.seed, order[i]);
+      trace_frontier_void(grid, a, order[i], drawn, plans[i].weight, config.sensor_range_m, config.min_range_m, part);
     }
   };
   std::vector<std::thread> pool;
@@ -144,8 +275,10 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
       total.contributors[i] = merged;
     }
   }
-  const double R = grid.resolution_m(), cell_m3 = R * R * R;
+  const double cell_m3 = R * R * R / double(1u << kFraction);
   field.vectors = total.vectors;
+  field.exact_vectors = exact_vectors;
+  for (std::size_t i = 0; i < plans.size(); ++i) field.sampled |= plans[i].samples < frontier_cells[i];
   field.util_m3.resize(total.util_cells.size());
   for (std::size_t i = 0; i < total.util_cells.size(); ++i) {
     field.util_m3[i] = double(total.util_cells[i]) * cell_m3;

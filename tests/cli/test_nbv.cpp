@@ -153,6 +153,9 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
       {"nbv box.ot --no-capmap --refine-step 0.5,0.1", 2, "--refine-step"},
       {"nbv box.ot --no-capmap --base 1,2,3", 2, "--base"},
       {"nbv box.ot --capmap '" + source("data/arms/fvx-arm.fcm") + "' --base 1,2,3", 2, "--base"},
+      {"nbv box.ot --no-capmap --accumulation fast", 2, "--accumulation"},
+      {"nbv box.ot --no-capmap --utility-vectors 3", 2, "--utility-vectors"},
+      {"nbv box.ot --no-capmap --utility-vectors many", 2, "--utility-vectors"},
       {"nbv missing.ot --no-capmap", 1, "missing.ot"},
       {"nbv s0.pcd --no-capmap", 1, "s0.pcd"},
   };
@@ -163,6 +166,30 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.arguments << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.json")) << c.arguments;
   }
+}
+
+// Under the budget the sampled accumulation is the exact one: the same report but for the
+// echoed mode; forced to sample, the report says how many vectors it traced of how many.
+TEST(CliNbv, AccumulationModesAgreeUnderTheBudget) {
+  const TempDir dir;
+  make_closed_box_map(dir);
+  const RunResult exact = run_fvx(dir, "nbv box.ot --no-capmap --accumulation exact -o exact.json");
+  const RunResult sampled = run_fvx(dir, "nbv box.ot --no-capmap -o sampled.json");
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  ASSERT_EQ(sampled.status, 0) << sampled.err;
+  const json e = json::parse(slurp(dir / "exact.json")), s = json::parse(slurp(dir / "sampled.json"));
+  EXPECT_EQ(e["config"]["accumulation"], "exact");
+  EXPECT_EQ(s["config"]["accumulation"], "sampled");
+  const std::size_t vectors = e["results"]["utility_vectors"].get<std::size_t>();
+  ASSERT_GT(vectors, 1000u);
+  EXPECT_EQ(e["results"], s["results"]);
+  const std::string budget = std::to_string(vectors / 10);
+  ASSERT_EQ(run_fvx(dir, "nbv box.ot --no-capmap --utility-vectors " + budget + " -o few.json").status, 0);
+  const json few = json::parse(slurp(dir / "few.json"));
+  EXPECT_EQ(few["config"]["max_utility_vectors"].get<std::size_t>(), vectors / 10);
+  EXPECT_LT(few["results"]["utility_vectors"].get<std::size_t>(), vectors / 5);
+  EXPECT_EQ(few["results"]["exact_utility_vectors"], e["results"]["exact_utility_vectors"]);
+  EXPECT_FALSE(few["results"]["views"].empty());
 }
 
 // The real slambook map, free-flying: the top pose is a free cell, and an independent cast

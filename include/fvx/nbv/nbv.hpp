@@ -17,6 +17,7 @@
 #include "fvx/capmap/viewing_ik.hpp"
 #include "fvx/frontier_voids/frontier_voids.hpp"
 #include "fvx/io/intrinsics.hpp"
+#include "fvx/utility/utility.hpp"
 
 namespace fvx::nbv {
 
@@ -75,6 +76,11 @@ struct Config {
   /// depth_min_m beyond its frontier cell (utility::Config::min_range_m) — a view that close
   /// to a hidden surface records nothing, so an exploration loop does not chase it.
   bool count_near_void_cells = true;
+  /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
+  /// max_utility_vectors, a stratified sample whose expected field is the exact one
+  /// (utility/utility.hpp).
+  utility::Accumulation accumulation = utility::Accumulation::Sampled;
+  std::size_t max_utility_vectors = utility::Config{}.max_vectors;
   int top = 10;                       ///< ranked views reported
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
   unsigned threads = 0;               ///< accumulation and scoring threads; 0: all cores (same result)
@@ -142,6 +148,7 @@ struct Result {
   Timing timing;
   std::vector<UtilityCell> utility_field;
   std::size_t utility_vectors = 0;
+  std::size_t exact_utility_vectors = 0;  ///< what the exact accumulation traces (sampled: more)
   std::string reason;            ///< why `views` is empty; empty otherwise
 };
 

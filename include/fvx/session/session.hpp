@@ -53,6 +53,10 @@ struct Manifest {
   /// Only void cells that could hide an object this large counted (fvx explore
   /// --target-size; voids/width.hpp), metres. Absent: 0, every void cell.
   double target_size_m = 0.0;
+  /// Algorithm 1's accumulation (nbv::Config::accumulation) and its budget. Absent:
+  /// "exact", as every session before the sampled accumulation was recorded.
+  std::string accumulation = "exact";
+  std::uint64_t max_utility_vectors = std::uint64_t(1) << 21;
   std::vector<ManifestView> views;
 };
 

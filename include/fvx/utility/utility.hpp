@@ -7,6 +7,18 @@
 /// starts at pos(f), goes along normalize(pos(f) − c) for at most s_r, and stops at the first
 /// cell that is not free; each cell it passes, f included, gains u_i. Cells with much
 /// utility see many voids through their frontiers: candidate viewpoints.
+///
+/// Two ways to accumulate (Config::accumulation):
+/// - Exact: every vector, as Algorithm 1 writes it. Its cost is Σ_i 7·|F_i| rays; on real
+///   maps one frontier cluster touching a thousand voids makes hundreds of millions.
+/// - Sampled (default): when the exact count exceeds Config::max_vectors, each
+///   frontier-void traces all 7 corners from a stratified sample of S_i of its |F_i|
+///   frontier cells (strata along a Morton order, so the sample spreads over the frontier
+///   surface), each vector weighted u_i·|F_i|/S_i. Every frontier cell is drawn with
+///   probability S_i/|F_i|, so the expected field is the exact field, cell by cell. The
+///   budget goes to frontier-voids in proportion to u_i·|F_i| (their share of the exact
+///   field's total), so every traced vector carries about the same utility. Under the
+///   budget the sampled field is the exact field.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -18,6 +30,11 @@
 
 namespace fvx::utility {
 
+enum class Accumulation { Exact, Sampled };
+const char* to_string(Accumulation a);
+/// "exact" or "sampled"; UsageError naming `what` otherwise.
+Accumulation parse_accumulation(const std::string& name, const std::string& what = "--accumulation");
+
 struct Config {
   double sensor_range_m = 4.0;  ///< s_r: the longest a utility ray goes, metres (Kinect v1: 4)
   /// A ray adds utility only to cells at least this far from its frontier cell, metres (it
@@ -26,6 +43,11 @@ struct Config {
   /// frontier than that measures nothing behind it.
   double min_range_m = 0.0;
   unsigned threads = 0;         ///< 0: all cores; the field is the same on any count
+  Accumulation accumulation = Accumulation::Sampled;
+  /// Sampled: the number of utility vectors to trace at most (about; every frontier-void
+  /// keeps at least kMinSamples frontier cells). Under it, every vector is traced.
+  std::size_t max_vectors = std::size_t(1) << 21;
+  std::uint64_t seed = 1;       ///< sampled: which frontier cells each stratum draws
   /// Called on the calling thread now and then: frontier-voids traced so far, and in all.
   std::function<void(std::size_t done, std::size_t total)> progress;
   std::vector<std::string> validate() const;
@@ -34,6 +56,8 @@ struct Config {
 /// How many contributing frontier-voids a cell remembers (the largest by utility): the
 /// voids a sensor at the cell should be turned towards.
 constexpr int kContributors = 4;
+/// Sampled: frontier cells every frontier-void keeps at least (all of them when it has fewer).
+constexpr std::size_t kMinSamples = 8;
 
 struct Field {
   std::vector<double> util_m3;  ///< per grid cell (DenseGrid index), the sum of u_i through it
@@ -42,6 +66,8 @@ struct Field {
   /// for unused slots, largest first.
   std::vector<std::array<std::int32_t, kContributors>> contributors;
   std::size_t vectors = 0;      ///< utility vectors traced
+  std::size_t exact_vectors = 0;  ///< what the exact accumulation traces (7 per frontier cell and frontier-void)
+  bool sampled = false;         ///< vectors < exact_vectors: the field is an unbiased estimate
   std::size_t cells = 0;        ///< cells with utility > 0
   double max_m3 = 0.0;
 };

@@ -197,6 +197,43 @@ TEST(Nbv, TheSameSeedGivesTheSameViewsOnAnyThreadCount) {
   EXPECT_NE(a.views.front().T_world_sensor.matrix(), c.views.front().T_world_sensor.matrix());
 }
 
+// The sampled accumulation, forced to sample (a tenth of the exact vectors), against the exact
+// one (its oracle), free-flying and on the arm: over seeds 1–3 its best views see on average
+// at least 95 % of what the exact best views see (measured: 101 % and 98 %). One seed alone
+// ranges 79–132 % (the exact path's own spread over seeds is 3–6 %): the best of 50 poses
+// drawn from the top cells moves with any change of the field, up or down.
+TEST(Nbv, TheSampledFieldsBestViewsSeeWhatTheExactOnesDoOnAverage) {
+  const ClosedBox& box = closed_box();
+  const Arm arm;
+  for (const bool on_arm : {false, true}) {
+    const std::optional<Reach> reach = on_arm ? std::optional<Reach>(arm.reach({0.2, 0, 0})) : std::nullopt;
+    double exact_sum = 0, sampled_sum = 0;
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+      Config exact = coarse();
+      exact.seed = seed;
+      exact.accumulation = utility::Accumulation::Exact;
+      const Result e = select(box.map, box.analysis, reach, exact);
+      ASSERT_FALSE(e.views.empty());
+      ASSERT_GT(e.utility_vectors, 1000u);
+      Config sampled = exact;
+      sampled.accumulation = utility::Accumulation::Sampled;
+      sampled.max_utility_vectors = e.utility_vectors / 10;
+      const Result s = select(box.map, box.analysis, reach, sampled);
+      ASSERT_FALSE(s.views.empty());
+      EXPECT_LT(s.utility_vectors, e.utility_vectors / 5);
+      EXPECT_EQ(s.exact_utility_vectors, e.exact_utility_vectors);
+      exact_sum += double(e.views.front().void_cells_seen);
+      sampled_sum += double(s.views.front().void_cells_seen);
+      if (seed == 1 && !on_arm) {  // the same views on one thread
+        sampled.threads = 1;
+        const Result one = select(box.map, box.analysis, reach, sampled);
+        EXPECT_EQ(one.views.front().T_world_sensor.matrix(), s.views.front().T_world_sensor.matrix());
+      }
+    }
+    EXPECT_GE(sampled_sum, 0.95 * exact_sum) << (on_arm ? "arm" : "free-flying");
+  }
+}
+
 TEST(Nbv, WithoutOpenVoidsTheAnswerIsEmptyWithAReason) {
   const ClosedBox& box = closed_box();
   frontier_voids::Analysis none = box.analysis;
@@ -218,6 +255,7 @@ TEST(Nbv, WithoutOpenVoidsTheAnswerIsEmptyWithAReason) {
 TEST(Nbv, HiddenVoidCellsLeaveAlgorithmOnesUtility) {
   const ClosedBox& box = closed_box();
   Config config = coarse();
+  config.accumulation = utility::Accumulation::Exact;  // counts Algorithm 1's vectors one by one
   const Result all_visible = select(box.map, box.analysis, std::nullopt, config);
   ASSERT_GT(all_visible.utility_vectors, 0u);
   const auto largest = std::max_element(box.analysis.frontier_voids.begin(), box.analysis.frontier_voids.end(),
