@@ -19,6 +19,8 @@
 #    the paper's; the 211 Redwood frames at 2.5 cm (FVX_REAL_DATA): frames per second of the
 #    replay step without the search against OctoMap's insertPointCloud in the same run, and
 #    of the whole fvx replay command (files read, --search-every 0);
+#  - next best view at scale: the whole fvx nbv on the real slambook and geb079 maps, sampled
+#    against exact accumulation, seeds 1-4 (scripts/bench-nbv-scale.sh; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
@@ -44,6 +46,7 @@ else
   echo "== frontiers and voids: skipped ($redwood not found; set FVX_REAL_DATA)"
 fi
 echo "== next best view" && "$build/tests/bench/bench_nbv" data/arms/fvx-arm.fcm 5
+echo "== next best view at scale" && FVX_REAL_DATA="$data" scripts/bench-nbv-scale.sh
 echo "== explore: time per stage and view (paper replicas, 2.5 cm, fvx arm at (0.2, 0, 0))"
 bench_out="$(mktemp -d)"
 for scene in paper-setting-1 paper-setting-2; do

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Next best view at the scale of real maps: the whole `fvx nbv` command (read the map, find
+# frontiers and voids, search) with the sampled accumulation (the default) and the exact one
+# (the paper's Algorithm 1, --accumulation exact), in the same run, on each map, free-flying
+# (--no-capmap), for each seed. Prints wall time, peak memory (RSS), utility vectors and the
+# best view's void cells, and the ratio of the sampled best view's void cells to the exact
+# one's with the same seed (both scored by the same field-of-view ray cast).
+#   scripts/bench-nbv-scale.sh [SEEDS]     SEEDS default "1 2 3 4"
+# Maps: octomap-maps/slambook_ch13/octomap.bt and octomap-share-data/geb079.bt from
+# FVX_REAL_DATA (default ../shared/data). The exact path takes 15-45 s per map and seed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${FVX_BUILD_DIR:-build}"
+data="${FVX_REAL_DATA:-../shared/data}"
+seeds="${1:-1 2 3 4}"
+fvx="$build/src/fvx"
+[ -x "$fvx" ] || { scripts/install-deps.sh && scripts/build.sh >/dev/null; }
+command -v /usr/bin/time >/dev/null || { echo "bench-nbv-scale: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+maps=("$data/octomap-maps/slambook_ch13/octomap.bt" "$data/octomap-maps/octomap-share-data/geb079.bt")
+printf '| map | seed | mode | wall s | search s | accumulation s | peak MiB | vectors | best U | sampled/exact U |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|\n'
+for map in "${maps[@]}"; do
+  [ -f "$map" ] || { echo "bench-nbv-scale: $map not found; set FVX_REAL_DATA" >&2; continue; }
+  for seed in $seeds; do
+    declare -A best=()
+    for mode in sampled exact; do
+      /usr/bin/time -f '%e %M' -o "$tmp/time" "$fvx" nbv "$map" --no-capmap --timing --seed "$seed" \
+        --accumulation "$mode" -o "$tmp/$mode.json"
+      read -r wall kb < "$tmp/time"
+      best[$mode]="$(jq '.results.best_void_cells_seen' "$tmp/$mode.json")"
+      ratio=""
+      [ "$mode" = exact ] && ratio="$(awk -v s="${best[sampled]}" -v e="${best[exact]}" 'BEGIN{printf "%.3f", e ? s/e : 0}')"
+      printf '| %s | %s | %s | %s | %.3f | %.3f | %d | %s | %s | %s |\n' "$(basename "$(dirname "$map")")/$(basename "$map")" \
+        "$seed" "$mode" "$wall" "$(jq '.results.timing_s.total' "$tmp/$mode.json")" \
+        "$(jq '.results.timing_s.accumulation' "$tmp/$mode.json")" "$((kb / 1024))" \
+        "$(jq '.results.utility_vectors' "$tmp/$mode.json")" "${best[$mode]}" "$ratio"
+    done
+  done
+done
