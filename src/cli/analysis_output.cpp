@@ -16,17 +16,6 @@ std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::str
   return box;
 }
 
-frontier_voids::Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds,
-                                     const voids::ClusterConfig& config, std::size_t* hull_faces,
-                                     int min_void_width_cells) {
-  frontiers::FrontierSet frontier_set;
-  frontier_set.rebuild(map);
-  voids::VoidSet void_set;
-  void_set.rebuild(map);
-  if (hull_faces) *hull_faces = void_set.hull().planes.size();
-  return frontier_voids::analyse(map, frontier_set, &void_set, bounds, config, min_void_width_cells);
-}
-
 Json bounds_json(const Eigen::AlignedBox3d& b) {
   if (b.isEmpty()) return nullptr;
   return {{"min", vec_json(b.min())}, {"max", vec_json(b.max())}};

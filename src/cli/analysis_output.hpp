@@ -13,12 +13,6 @@ namespace fvx::cli {
 /// --bounds x0,y0,z0,x1,y1,z1 (metres; or another option of that form), or empty.
 std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name = "bounds");
 
-/// Frontiers, voids, their clusters and frontier-voids of a whole map within `bounds`
-/// (§IV-A/B), from scratch; `hull_faces` receives the hull's face count.
-frontier_voids::Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds,
-                                     const voids::ClusterConfig& config, std::size_t* hull_faces = nullptr,
-                                     int min_void_width_cells = 1);
-
 Json bounds_json(const Eigen::AlignedBox3d& b);
 Json frontier_clusters_json(const std::vector<frontiers::Cluster>& clusters);
 Json void_clusters_json(const std::vector<voids::VoidCluster>& clusters);

@@ -24,9 +24,7 @@ int run_frontiers(const Args& args) {
     throw UsageError("fvx frontiers: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
   const auto bounds = parse_bounds(args);
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
-  frontiers::FrontierSet frontier_set;
-  frontier_set.rebuild(map);
-  frontier_voids::Analysis a = frontier_voids::analyse(map, frontier_set, nullptr, bounds, voids::ClusterConfig{});
+  frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, voids::ClusterConfig{}, 1, false);
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, false, args.has("by-cluster"));
   if (args.has("picture")) write_picture(args.get("picture"), map, a, false);
 

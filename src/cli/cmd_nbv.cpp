@@ -285,13 +285,14 @@ int run_nbv(const Args& args) {
   const Eigen::Isometry3d& T_world_base = arm_inputs.T_world_base;
   const std::optional<capmap::Arm>& arm = arm_inputs.arm;
 
+  config.keep_utility_field = args.has("utility-cloud") || args.has("picture");
   Progress progress(args.has("progress"));
   config.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
     progress.update("fvx nbv: " + stage + (total ? " " + std::to_string(done) + "/" + std::to_string(total) : ""));
   };
   progress.update("fvx nbv: frontiers, voids and frontier-voids of " + args.positional[0]);
   const int void_width = voids::void_width_for_target(target_size_m, map.resolution_m());
-  const frontier_voids::Analysis a = analyse_map(map, bounds, cluster_config, nullptr, void_width);
+  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, cluster_config, void_width);
   const nbv::Result r = nbv::select(map, a, reach, config);
   progress.finish();
   if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);

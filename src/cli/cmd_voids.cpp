@@ -34,8 +34,7 @@ int run_voids(const Args& args) {
   config.min_fit_score = args.number("min-fit-score", config.min_fit_score, 0.0, 1.0, true);
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
-  std::size_t hull_faces = 0;
-  frontier_voids::Analysis a = analyse_map(map, bounds, config, &hull_faces);
+  frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, config);
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
   if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);
   if (args.has("picture")) write_picture(args.get("picture"), map, a, true);
@@ -53,7 +52,7 @@ int run_voids(const Args& args) {
         return n + (fv.enclosed() ? 0 : a.void_clusters[std::size_t(fv.void_id)].cells.size());
       });
   report["results"] = {{"bounds_m", bounds_json(a.bounds_m)},
-                       {"hull_faces", hull_faces},
+                       {"hull_faces", a.hull_faces},
                        {"void_cells", a.void_cells.size()},
                        {"void_volume_dm3", frontier_voids::to_dm3(double(a.void_cells.size()) * R * R * R)},
                        {"void_clusters", void_clusters_json(a.void_clusters)},

@@ -12,10 +12,12 @@ namespace fvx::frontier_voids {
 std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidCluster>& voids,
                                               const std::vector<frontiers::Cluster>& frontier_clusters) {
   // From the frontier side: a real map has ten times more void cells than frontier cells.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
-  for (const auto& v : voids)
-    for (const auto& k : v.cells) entries.emplace_back(frontiers::pack(k), std::uint32_t(v.id));
-  const map::KeyIndex void_of(entries);
+  std::size_t void_cells = 0;
+  for (const auto& v : voids) void_cells += v.cells.size();
+  const map::KeyIndex void_of(void_cells, [&](auto&& visit) {
+    for (const auto& v : voids)
+      for (const auto& k : v.cells) visit(frontiers::pack(k), std::uint32_t(v.id));
+  });
   std::vector<FrontierVoid> out(voids.size());
   for (const auto& v : voids) {
     out[std::size_t(v.id)].void_id = v.id;
@@ -38,11 +40,16 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
   return out;
 }
 
-Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
-                 const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
-                 const voids::ClusterConfig& config, int min_void_width_cells) {
+namespace {
+
+/// The one-shot path's dense grid takes about 10 bytes per cell of the known box (states,
+/// marks, column extremes); above this many cells the sets are used instead.
+constexpr std::size_t kMaxDenseCells = std::size_t(1) << 28;
+
+/// S (default: the box of the known cells) and the warnings that say why a result is empty.
+Analysis start(const map::Stats& stats, const std::optional<Eigen::AlignedBox3d>& bounds_m, bool with_voids,
+               bool hull_empty) {
   Analysis a;
-  const map::Stats stats = map.stats();
   if (bounds_m) {
     a.bounds_m = *bounds_m;
   } else if (!stats.empty) {
@@ -50,16 +57,29 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
   }
   if (stats.empty) a.warnings.push_back("the map is empty: no frontiers and no voids");
   else if (stats.free_leaves == 0) a.warnings.push_back("the map has no free cells: no frontiers");
-  if (void_set && !stats.empty && stats.occupied_leaves == 0)
+  if (with_voids && !stats.empty && stats.occupied_leaves == 0)
     a.warnings.push_back("the map has no occupied cells: no hull, no voids");
-  else if (void_set && !stats.empty && void_set->hull().empty())
+  else if (with_voids && !stats.empty && hull_empty)
     a.warnings.push_back("the occupied cells span no volume (fewer than four, or flat): no hull, no voids");
   if (bounds_m && !stats.empty && !bounds_m->intersects(Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m)))
     a.warnings.push_back("the search space holds no known cell");
-  a.frontier_cells = frontier_set.cells(map, a.bounds_m);
+  return a;
+}
+
+/// The cells whose centres lie in `bounds_m`, order kept.
+std::vector<map::VoxelKey> within(const map::OccupancyMap& map, std::vector<map::VoxelKey> cells,
+                                  const Eigen::AlignedBox3d& bounds_m) {
+  cells.erase(std::remove_if(cells.begin(), cells.end(),
+                             [&](const map::VoxelKey& k) { return !bounds_m.contains(map.center_of(k)); }),
+              cells.end());
+  return cells;
+}
+
+/// Clusters and pairs the frontier and void cells already in `a`.
+void cluster_and_pair(const map::OccupancyMap& map, Analysis& a, bool with_voids, const voids::ClusterConfig& config,
+                      int min_void_width_cells) {
   a.frontier_clusters = frontiers::cluster(map, a.frontier_cells);
-  if (!void_set) return a;
-  a.void_cells = void_set->cells(map, a.bounds_m);
+  if (!with_voids) return;
   if (min_void_width_cells > 1) {
     const std::size_t all = a.void_cells.size();
     a.void_cells = voids::cells_in_full_cubes(a.void_cells, min_void_width_cells);
@@ -67,6 +87,43 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
   }
   a.void_clusters = voids::cluster_voids(map, a.void_cells, config);
   a.frontier_voids = pair_frontier_voids(a.void_clusters, a.frontier_clusters);
+}
+
+}  // namespace
+
+Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& frontier_set,
+                 const voids::VoidSet* void_set, const std::optional<Eigen::AlignedBox3d>& bounds_m,
+                 const voids::ClusterConfig& config, int min_void_width_cells) {
+  Analysis a = start(map.stats(), bounds_m, void_set != nullptr, void_set && void_set->hull().empty());
+  a.frontier_cells = frontier_set.cells(map, a.bounds_m);
+  if (void_set) {
+    a.void_cells = void_set->cells(map, a.bounds_m);
+    a.hull_faces = void_set->hull().planes.size();
+  }
+  cluster_and_pair(map, a, void_set != nullptr, config, min_void_width_cells);
+  return a;
+}
+
+Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds_m,
+                     const voids::ClusterConfig& config, int min_void_width_cells, bool with_voids) {
+  const map::Stats stats = map.stats();
+  const Eigen::AlignedBox3d known = stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
+  if (!known.isEmpty() && (known.sizes() / map.resolution_m()).prod() > double(kMaxDenseCells)) {
+    frontiers::FrontierSet frontier_set;  // a few cells far apart: the sets hold only them
+    frontier_set.rebuild(map);
+    voids::VoidSet void_set;
+    if (with_voids) void_set.rebuild(map);
+    return analyse(map, frontier_set, with_voids ? &void_set : nullptr, bounds_m, config, min_void_width_cells);
+  }
+  const map::DenseGrid grid(map, known);
+  voids::Hull hull;
+  std::vector<map::VoxelKey> void_cells;
+  if (with_voids) void_cells = voids::void_cells(grid, hull);
+  Analysis a = start(stats, bounds_m, with_voids, hull.empty());
+  a.frontier_cells = within(map, frontiers::frontier_cells(grid), a.bounds_m);
+  a.void_cells = within(map, std::move(void_cells), a.bounds_m);
+  a.hull_faces = hull.planes.size();
+  cluster_and_pair(map, a, with_voids, config, min_void_width_cells);
   return a;
 }
 

@@ -32,6 +32,30 @@ bool is_frontier(const map::OccupancyMap& map, const map::VoxelKey& key) {
   return map.state(key) == map::VoxelState::Free && has_unknown_face_neighbour(map, key);
 }
 
+std::vector<map::VoxelKey> frontier_cells(const map::DenseGrid& grid) {
+  const Eigen::Vector3i n = grid.size();
+  const int lo[3] = {grid.min_key().x, grid.min_key().y, grid.min_key().z};
+  const std::ptrdiff_t stride[3] = {1, n.x(), std::ptrdiff_t(n.x()) * n.y()};
+  // A face-neighbour beyond the grid is unknown, unless it is beyond the key space too.
+  auto unknown = [&](std::size_t i, const int (&c)[3], int a, int step) {
+    const int m = c[a] + step;
+    if (m < 0 || m >= n[a]) return lo[a] + m >= 0 && lo[a] + m <= 0xFFFF;
+    return grid.state_at(std::size_t(std::ptrdiff_t(i) + step * stride[a])) == map::VoxelState::Unknown;
+  };
+  std::vector<map::VoxelKey> out;
+  std::size_t i = 0;  // index order is key order (z, then y, then x)
+  for (int z = 0; z < n.z(); ++z)
+    for (int y = 0; y < n.y(); ++y)
+      for (int x = 0; x < n.x(); ++x, ++i) {
+        if (grid.state_at(i) != map::VoxelState::Free) continue;
+        const int c[3] = {x, y, z};
+        bool frontier = false;
+        for (int a = 0; a < 3 && !frontier; ++a) frontier = unknown(i, c, a, -1) || unknown(i, c, a, +1);
+        if (frontier) out.push_back(grid.key(i));
+      }
+  return out;
+}
+
 void FrontierSet::rebuild(const map::OccupancyMap& map) {
   cells_.clear();
   for (const map::Leaf& leaf : map.leaves()) {
@@ -82,9 +106,9 @@ std::vector<map::VoxelKey> FrontierSet::cells(const map::OccupancyMap& map,
 
 std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells) {
   // Union-find over the cells' indices; neighbours are found through a key → index table.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) entries[i] = {pack(cells[i]), std::uint32_t(i)};
-  const map::KeyIndex index(entries);
+  const map::KeyIndex index(cells.size(), [&](auto&& visit) {
+    for (std::size_t i = 0; i < cells.size(); ++i) visit(pack(cells[i]), std::uint32_t(i));
+  });
   std::vector<std::size_t> parent(cells.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::size_t i) {
@@ -92,10 +116,11 @@ std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map
     return i;
   };
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    for (int dz = -1; dz <= 1; ++dz)
+    // The 13 neighbours after the cell in key order: each pair of neighbours is joined once.
+    for (int dz = 0; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          if (!dx && !dy && !dz) continue;
+          if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0))) continue;
           const auto n = neighbour(cells[i], dx, dy, dz);
           if (!n) continue;
           const std::uint32_t j = index.find(pack(*n));

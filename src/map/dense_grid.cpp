@@ -9,10 +9,11 @@ namespace fvx::map {
 
 DenseGrid::DenseGrid(const OccupancyMap& map, const Eigen::AlignedBox3d& bounds_m) : resolution_m_(map.resolution_m()) {
   const double R = resolution_m_;
+  if (bounds_m.isEmpty() || !bounds_m.min().allFinite() || !bounds_m.max().allFinite()) return;  // an empty grid
   int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {  // cells whose centres (k + 0.5)·R lie in the bounds
-    lo[a] = std::max(0, int(std::ceil(bounds_m.min()[a] / R - 0.5)) + 32768);
-    hi[a] = std::min(0xFFFF, int(std::floor(bounds_m.max()[a] / R - 0.5)) + 32768);
+  for (int a = 0; a < 3; ++a) {  // cells whose centres (k + 0.5)·R lie in the bounds, clamped to the key space
+    lo[a] = int(std::max(0.0, std::ceil(bounds_m.min()[a] / R - 0.5) + 32768));
+    hi[a] = int(std::min(65535.0, std::floor(bounds_m.max()[a] / R - 0.5) + 32768));
     if (hi[a] < lo[a]) return;  // an empty grid
   }
   min_ = {std::uint16_t(lo[0]), std::uint16_t(lo[1]), std::uint16_t(lo[2])};
@@ -91,9 +92,9 @@ void distance_1d(const std::vector<float>& f, std::vector<float>& d, std::vector
 
 }  // namespace
 
-std::vector<float> squared_distance_to(const DenseGrid& grid, VoxelState state) {
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state) {
   const Eigen::Vector3i n = grid.size();
-  std::vector<float> dist(grid.cell_count());
+  core::LargeVector<float> dist(grid.cell_count());
   for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = grid.state_at(i) == state ? 0.0f : INFINITY;
   const std::size_t stride[3] = {1, std::size_t(n.x()), std::size_t(n.x()) * std::size_t(n.y())};
   const int longest = n.maxCoeff();
@@ -103,13 +104,15 @@ std::vector<float> squared_distance_to(const DenseGrid& grid, VoxelState state) 
     const int len = n[axis];
     f.resize(std::size_t(len));
     d.resize(std::size_t(len));
-    // Every line along `axis`: its start is any cell whose `axis` coordinate is 0.
-    for (std::size_t start = 0; start < dist.size(); ++start) {
-      if ((start / stride[axis]) % std::size_t(len) != 0) continue;
-      for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
-      distance_1d(f, d, v, z);
-      for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
-    }
+    // Every line along `axis`: one per cell of the plane of the other two axes (b, c).
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    for (int ob = 0; ob < n[b]; ++ob)
+      for (int oc = 0; oc < n[c]; ++oc) {
+        const std::size_t start = std::size_t(ob) * stride[b] + std::size_t(oc) * stride[c];
+        for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
+        distance_1d(f, d, v, z);
+        for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
+      }
   }
   return dist;
 }

@@ -120,8 +120,8 @@ Result select_frontier(Search& s, Result result) {
     if (!target || c.cells.size() > target->cells.size()) target = &c;
   // A frontier-based viewer stands in the free space in front of the frontier: from each
   // frontier cell a ray goes away from its unknown face-neighbours; cells it passes gain 1.
-  std::vector<double> rays_through(s.grid.cell_count(), 0.0);
-  std::vector<std::uint8_t> mask(s.grid.cell_count(), 0);
+  core::LargeVector<double> rays_through(s.grid.cell_count(), 0.0);
+  core::LargeVector<std::uint8_t> mask(s.grid.cell_count(), 0);
   std::size_t vectors = 0;
   for (const map::VoxelKey& f : target->cells) {
     if (!s.grid.contains(f)) continue;

@@ -55,8 +55,8 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
                                                         config.sensor.depth_min_m, config.count_near_void_cells);
 }
 
-std::vector<std::uint8_t> Search::void_mask() const {
-  std::vector<std::uint8_t> mask(void_label.size());
+core::LargeVector<std::uint8_t> Search::void_mask() const {
+  core::LargeVector<std::uint8_t> mask(void_label.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = void_label[i] >= 0;
   return mask;
 }
@@ -109,7 +109,7 @@ bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_w
   return true;
 }
 
-std::vector<std::size_t> Search::prune(const std::vector<double>& value, Result& result) const {
+std::vector<std::size_t> Search::prune(const core::LargeVector<double>& value, Result& result) const {
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < value.size(); ++i) {
     if (!(value[i] > 0.0)) continue;
@@ -117,9 +117,11 @@ std::vector<std::size_t> Search::prune(const std::vector<double>& value, Result&
     const map::VoxelKey k = grid.key(i);
     const bool keep = keep_position(k, grid.center_of(k), result.pruning);
     if (keep) candidates.push_back(i);
-    result.utility_field.push_back({grid.center_of(k), value[i], keep});
+    if (config.keep_utility_field) result.utility_field.push_back({grid.center_of(k), value[i], keep});
   }
-  std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t l, std::size_t r) { return value[l] > value[r]; });
+  // Utility descending, then index: a total order, the same from any sort.
+  std::sort(candidates.begin(), candidates.end(),
+            [&](std::size_t l, std::size_t r) { return value[l] > value[r] || (value[l] == value[r] && l < r); });
   result.pruning.candidate_cells = candidates.size();
   return candidates;
 }
@@ -187,7 +189,7 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
 }
 
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
-                               const std::vector<double>* util_m3, const utility::Field* field,
+                               const core::LargeVector<double>* util_m3, const utility::Field* field,
                                const std::function<bool(Pose&, std::size_t)>& accept) const {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < poses.size(); ++i)

@@ -37,8 +37,8 @@ struct Search {
   /// Position checks in the paper's order, each counted in `pruning` when it fails.
   bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
   /// The cells with a value > 0 that pass keep_position, by value (descending; ties: index
-  /// order), each recorded in result.utility_field and counted in result.pruning.
-  std::vector<std::size_t> prune(const std::vector<double>& value, Result& result) const;
+  /// order), each recorded in result.utility_field (Config::keep_utility_field) and counted in result.pruning.
+  std::vector<std::size_t> prune(const core::LargeVector<double>& value, Result& result) const;
   /// Orientation checks: the capability map's bit, then IK when an arm is given (its
   /// restarts seeded by `pose_seed`); fills pose.joints_rad.
   bool keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const;
@@ -56,10 +56,10 @@ struct Search {
   /// refuses (when given; it may fill the joints), keeps config.top and describes each view:
   /// void cells seen per cluster, contributors, joints.
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
-                         const std::vector<double>* util_m3, const utility::Field* field,
+                         const core::LargeVector<double>* util_m3, const utility::Field* field,
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
 
-  std::vector<std::uint8_t> void_mask() const;
+  core::LargeVector<std::uint8_t> void_mask() const;
   /// A copy of the analysis with each frontier-void's u_i counting only the void cells U
   /// counts (config.hidden_void_cells left out).
   frontier_voids::Analysis visible_utility() const;
@@ -76,8 +76,8 @@ struct Search {
   Eigen::AlignedBox3d known_m;                   ///< the box of the map's known cells (empty map: empty)
   Eigen::AlignedBox3d view_bounds_m;
   map::DenseGrid grid;
-  std::vector<std::int32_t> void_label;          ///< per grid cell: void cluster id, −1 elsewhere
-  std::vector<float> occupied_distance_sq;       ///< per grid cell: to the nearest occupied cell, cells²
+  core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
+  core::LargeVector<float> occupied_distance_sq;      ///< per grid cell: to the nearest occupied cell, cells²
   std::vector<Eigen::Vector3d> rays_sensor;
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;

@@ -4,7 +4,9 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <thread>
 
 #include "fvx/core/error.hpp"
@@ -30,19 +32,43 @@ std::vector<std::string> Config::validate() const {
 
 namespace {
 
-using Slots = std::array<std::int32_t, kContributors>;
-
-/// One thread's share: utility in cells (u_i / R³, an integer, so that sums do not depend on
-/// the order of addition or the number of threads) and contributors per grid cell.
-struct Partial {
-  std::vector<std::uint64_t> util_cells;
-  std::vector<Slots> contributors;
-  std::size_t vectors = 0;
-  // The cells the current frontier-void reached, each once: its contributor entries are
-  // written after its rays, not at every cell a ray passes (most passes repeat a cell).
-  std::vector<std::uint64_t> touched_bits;  ///< one bit per cell (fits in cache, unlike an int per cell)
-  std::vector<std::size_t> touched;
+/// The field being accumulated, shared by the threads: utility in cells (u_i / R³ in fixed
+/// point, an integer, so that sums do not depend on the order of addition or the number of
+/// threads) and, per cell, its kContributors largest contributors (Field::contributors),
+/// ordered by rank in `order`. Both are the same whatever order frontier-voids arrive in.
+struct Shared {
+  core::LargeVector<std::uint64_t> util_cells;
+  core::LargeVector<std::array<std::int32_t, kContributors>> contributors;
+  std::vector<std::uint32_t> rank;  ///< per frontier-void: its place in `order`
+  std::mutex mutex;
 };
+
+/// One thread's scratch for the frontier-void it is tracing: how often its rays passed each
+/// cell, and the cells passed, each once. Written to Shared once per frontier-void, not at
+/// every cell a ray passes (most passes repeat a cell).
+struct Worker {
+  core::LargeVector<std::uint32_t> passes;  ///< per grid cell
+  std::vector<std::size_t> touched;
+  std::size_t vectors = 0;
+};
+
+/// Adds frontier-void `fv` (its vectors weighing `weight` each) to the shared field at the
+/// cells `w` passed, and clears `w` for the next one.
+void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
+  const std::lock_guard<std::mutex> lock(shared.mutex);
+  const std::uint32_t rank = shared.rank[std::size_t(fv)];
+  for (const std::size_t index : w.touched) {
+    shared.util_cells[index] += weight * w.passes[index];
+    w.passes[index] = 0;
+    std::int32_t carry = fv;  // insert by rank, dropping the last
+    for (auto& slot : shared.contributors[index]) {
+      if (slot >= 0 && shared.rank[std::size_t(slot)] < rank) continue;
+      std::swap(slot, carry);
+      if (carry < 0) break;
+    }
+  }
+  w.touched.clear();
+}
 
 /// Interleaves the bits of a key (x lowest): cells close in this order are close in space.
 std::uint64_t morton(const map::VoxelKey& k) {
@@ -114,10 +140,10 @@ std::vector<map::VoxelKey> draw(const std::vector<const std::vector<map::VoxelKe
   return out;
 }
 
-/// Algorithm 1 for one frontier-void: every corner, from each of `starts`.
+/// Algorithm 1 for one frontier-void: every corner, from each of `starts`; counts passes in `w`.
 void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analysis& a, std::int32_t fv_index,
-                         const std::vector<map::VoxelKey>& starts, std::uint64_t weight, double sensor_range_m,
-                         double min_range_m, Partial& out) {
+                         const std::vector<map::VoxelKey>& starts, double sensor_range_m, double min_range_m,
+                         Worker& w) {
   const auto& fv = a.frontier_voids[std::size_t(fv_index)];
   const auto corners = a.void_clusters[std::size_t(fv.void_id)].corners();
   for (const map::VoxelKey& f : starts) {
@@ -125,7 +151,7 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
     for (const Eigen::Vector3d& c : corners) {
       const Eigen::Vector3d dir = start - c;
       if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
-      ++out.vectors;
+      ++w.vectors;
       bool far_enough = min_range_m <= 0.0;  // cells along a ray only get farther
       grid.walk(start, dir, sensor_range_m, [&](std::size_t index, map::VoxelState s) {
         if (s != map::VoxelState::Free) return false;
@@ -133,27 +159,11 @@ void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analy
           far_enough = (grid.center_of(grid.key(index)) - start).squaredNorm() >= min_range_m * min_range_m;
           if (!far_enough) return true;
         }
-        out.util_cells[index] += weight;
-        std::uint64_t& word = out.touched_bits[index >> 6];
-        const std::uint64_t bit = std::uint64_t(1) << (index & 63);
-        if (!(word & bit)) {
-          word |= bit;
-          out.touched.push_back(index);
-        }
+        if (w.passes[index]++ == 0) w.touched.push_back(index);
         return true;
       });
     }
   }
-  // This thread takes frontier-voids in global order: append to each cell's first free slot.
-  for (const std::size_t index : out.touched) {
-    out.touched_bits[index >> 6] = 0;  // cleared for the next frontier-void
-    for (auto& slot : out.contributors[index])
-      if (slot < 0) {
-        slot = fv_index;
-        break;
-      }
-  }
-  out.touched.clear();
 }
 
 /// Samples per frontier-void for a budget of `cells` frontier cells in all (7 vectors
@@ -201,6 +211,44 @@ std::vector<Plan> plan(const frontier_voids::Analysis& a, const std::vector<std:
   return plans;
 }
 
+/// Runs work(worker, report) on each worker, the first on the calling thread (the one that
+/// reports progress); an exception in any thread is rethrown here.
+template <typename Work>
+void run_threads(std::vector<Worker>& workers, Work& work) {
+  std::vector<std::exception_ptr> errors(workers.size());
+  auto guarded = [&](std::size_t t) {
+    try {
+      work(workers[t], t == 0);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < workers.size(); ++t) pool.emplace_back(guarded, t);
+  guarded(0);
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+/// The shared sums in m³, and each cell's contributors.
+Field to_field(Shared& shared, double R, const std::vector<Plan>& plans, const std::vector<std::size_t>& frontier_cells,
+               std::size_t exact_vectors, const std::vector<Worker>& workers) {
+  Field field;
+  const double cell_m3 = R * R * R / double(1u << kFraction);
+  for (const Worker& w : workers) field.vectors += w.vectors;
+  field.exact_vectors = exact_vectors;
+  for (std::size_t i = 0; i < plans.size(); ++i) field.sampled |= plans[i].samples < frontier_cells[i];
+  field.util_m3.resize(shared.util_cells.size());
+  for (std::size_t i = 0; i < shared.util_cells.size(); ++i) {
+    field.util_m3[i] = double(shared.util_cells[i]) * cell_m3;
+    field.cells += shared.util_cells[i] > 0;
+    field.max_m3 = std::max(field.max_m3, field.util_m3[i]);
+  }
+  field.contributors = std::move(shared.contributors);
+  return field;
+}
+
 }  // namespace
 
 Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, const Config& config) {
@@ -213,8 +261,6 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   std::stable_sort(order.begin(), order.end(), [&](std::int32_t l, std::int32_t r) {
     return a.frontier_voids[std::size_t(l)].utility_m3 > a.frontier_voids[std::size_t(r)].utility_m3;
   });
-  std::vector<std::size_t> rank(a.frontier_voids.size(), 0);
-  for (std::size_t i = 0; i < order.size(); ++i) rank[std::size_t(order[i])] = i;
 
   const double R = grid.resolution_m();
   const auto starts = starts_per_cluster(grid, a);
@@ -224,69 +270,29 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   std::size_t exact_vectors = 0;
   const std::vector<Plan> plans = plan(a, order, frontier_cells, R, config, exact_vectors);
 
-  Slots none;
-  none.fill(-1);
   const unsigned threads = std::max(
       1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
                              unsigned(std::max<std::size_t>(1, order.size()))));
-  std::vector<Partial> parts(threads);
+  Shared shared;
+  shared.util_cells.assign(grid.cell_count(), 0);
+  shared.contributors.assign(grid.cell_count(), {-1, -1, -1, -1});
+  shared.rank.assign(a.frontier_voids.size(), 0);
+  for (std::size_t i = 0; i < order.size(); ++i) shared.rank[std::size_t(order[i])] = std::uint32_t(i);
+  std::vector<Worker> workers(threads);
   std::atomic<std::size_t> next{0};
-  auto work = [&](Partial& part, bool report) {
-    part.util_cells.assign(grid.cell_count(), 0);
-    part.contributors.assign(grid.cell_count(), none);
-    part.touched_bits.assign(grid.cell_count() / 64 + 1, 0);
+  auto work = [&](Worker& w, bool report) {
+    w.passes.assign(grid.cell_count(), 0);
     for (std::size_t i = next++; i < order.size(); i = next++) {
       if (report && config.progress) config.progress(i, order.size());
       std::vector<const std::vector<map::VoxelKey>*> lists;
       for (const int id : a.frontier_voids[std::size_t(order[i])].frontier_ids) lists.push_back(&starts[std::size_t(id)]);
       const auto drawn = draw(lists, frontier_cells[i], plans[i].samples, config.seed, order[i]);
-      trace_frontier_void(grid, a, order[i], drawn, plans[i].weight, config.sensor_range_m, config.min_range_m, part);
+      trace_frontier_void(grid, a, order[i], drawn, config.sensor_range_m, config.min_range_m, w);
+      flush(w, plans[i].weight, order[i], shared);
     }
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, std::ref(parts[t]), false);
-  work(parts[0], true);
-  for (auto& t : pool) t.join();
-
-  // Merge: sums of integers, and each cell's contributors from all threads in global order.
-  Field field;
-  Partial& total = parts[0];
-  for (unsigned t = 1; t < threads; ++t) {
-    const Partial& p = parts[t];
-    total.vectors += p.vectors;
-    for (std::size_t i = 0; i < total.util_cells.size(); ++i) {
-      if (p.util_cells[i] == 0) continue;
-      total.util_cells[i] += p.util_cells[i];
-      // Both lists are in global order: merge them, dropping repeats, keep the first slots.
-      const Slots& l = total.contributors[i];
-      const Slots& r = p.contributors[i];
-      Slots merged = none;
-      std::size_t li = 0, ri = 0, n = 0;
-      auto rank_of = [&](std::int32_t fv) { return fv < 0 ? std::numeric_limits<std::size_t>::max() : rank[std::size_t(fv)]; };
-      while (n < std::size_t(kContributors)) {
-        const std::int32_t a_fv = li < l.size() ? l[li] : -1, b_fv = ri < r.size() ? r[ri] : -1;
-        if (a_fv < 0 && b_fv < 0) break;
-        const bool take_left = rank_of(a_fv) <= rank_of(b_fv);
-        const std::int32_t fv = take_left ? a_fv : b_fv;
-        (take_left ? li : ri)++;
-        if (a_fv == b_fv) ++ri;  // one frontier-void is never split between threads; safe anyway
-        merged[n++] = fv;
-      }
-      total.contributors[i] = merged;
-    }
-  }
-  const double cell_m3 = R * R * R / double(1u << kFraction);
-  field.vectors = total.vectors;
-  field.exact_vectors = exact_vectors;
-  for (std::size_t i = 0; i < plans.size(); ++i) field.sampled |= plans[i].samples < frontier_cells[i];
-  field.util_m3.resize(total.util_cells.size());
-  for (std::size_t i = 0; i < total.util_cells.size(); ++i) {
-    field.util_m3[i] = double(total.util_cells[i]) * cell_m3;
-    field.cells += total.util_cells[i] > 0;
-    field.max_m3 = std::max(field.max_m3, field.util_m3[i]);
-  }
-  field.contributors = std::move(total.contributors);
-  return field;
+  run_threads(workers, work);
+  return to_field(shared, R, plans, frontier_cells, exact_vectors, workers);
 }
 
 }  // namespace fvx::utility

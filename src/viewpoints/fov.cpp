@@ -33,7 +33,7 @@ Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_r
   return R * Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ());
 }
 
-FovScorer::FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target,
+FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t> target,
                      std::vector<Eigen::Vector3d> rays_sensor, double depth_max_m, double depth_min_m,
                      bool near_targets_count)
     : grid_(grid),

@@ -3,7 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <random>
 
 #include "fvx/core/error.hpp"
@@ -58,33 +57,34 @@ double fit_score(const Moments& m, double R) {
 
 }  // namespace
 
-std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
-                                       const ClusterConfig& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid ClusterConfig");
-  const double R = map.resolution_m();
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) entries[i] = {frontiers::pack(cells[i]), std::uint32_t(i)};
-  const map::KeyIndex index(entries);         // cell → its index in `cells`
-  std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
+namespace {
 
-  std::vector<std::size_t> order(cells.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+/// Seeded region growing (§IV-B): from each cell not yet in a cluster, in a seeded random
+/// order, breadth first over 26-neighbours, adding a neighbour while the fit score (Eq. 2)
+/// stays at or above the threshold. Returns each cell's cluster, clusters in growing order.
+std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                      const ClusterConfig& config) {
+  const double R = map.resolution_m();
+  const map::KeyIndex index(cells.size(), [&](auto&& visit) {  // cell → its index in `cells`
+    for (std::size_t i = 0; i < cells.size(); ++i) visit(frontiers::pack(cells[i]), std::uint32_t(i));
+  });
+  std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
+  std::vector<std::uint32_t> order(cells.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
   std::mt19937_64 rng(config.seed);
   std::shuffle(order.begin(), order.end(), rng);
 
-  std::vector<std::vector<map::VoxelKey>> grown;
-  for (const std::size_t start : order) {
+  int clusters = 0;
+  std::vector<std::uint32_t> queue;  // first in, first out: read from `head` on
+  for (const std::uint32_t start : order) {
     if (owner[start] >= 0) continue;
-    const int id = int(grown.size());
-    grown.emplace_back();
+    const int id = clusters++;
     Moments m{map.center_of(cells[start])};
-    std::deque<map::VoxelKey> queue{cells[start]};
-    owner[start] = id;
     m.add(map.center_of(cells[start]));
-    while (!queue.empty()) {
-      const map::VoxelKey k = queue.front();
-      queue.pop_front();
-      grown.back().push_back(k);
+    owner[start] = id;
+    queue.assign(1, start);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const map::VoxelKey k = cells[queue[head]];
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
@@ -98,30 +98,53 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
             if (fit_score(with, R) < config.min_fit_score) continue;  // stays for a later seed
             m = with;
             owner[j] = id;
-            queue.push_back(n);
+            queue.push_back(j);
           }
     }
   }
+  return owner;
+}
 
-  // Number clusters by their smallest key; describe each.
-  for (auto& g : grown) std::sort(g.begin(), g.end());
-  std::sort(grown.begin(), grown.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
+/// μ, the axes, λ, a, N·R³ and S of a cluster's cells (key order).
+VoidCluster describe(std::vector<map::VoxelKey> cells, const map::OccupancyMap& map) {
+  const double R = map.resolution_m();
+  VoidCluster c;
+  Moments m{map.center_of(cells.front())};
+  for (const auto& k : cells) m.add(map.center_of(k));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(m.covariance(R * R / 12.0));
+  c.mean_m = m.origin + m.sum / m.n;
+  c.axes = eigen.eigenvectors();
+  c.variances_m2 = eigen.eigenvalues();
+  c.semi_axes_m = (5.0 * c.variances_m2.array().max(0.0)).sqrt();
+  c.volume_m3 = double(cells.size()) * R * R * R;
+  c.fit_score = fit_score(m, R);
+  c.cells = std::move(cells);
+  return c;
+}
+
+}  // namespace
+
+std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                                       const ClusterConfig& config) {
+  FVX_ASSERT(config.validate().empty(), "invalid ClusterConfig");
+  const std::vector<int> owner = grow(map, cells, config);
+  // Number clusters by their smallest key: `cells` is in key order, so in order of first
+  // appearance; and each cluster's cells come out in key order too.
+  std::vector<int> id_of(owner.empty() ? 0 : std::size_t(*std::max_element(owner.begin(), owner.end())) + 1, -1);
+  std::vector<std::vector<map::VoxelKey>> members;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    int& id = id_of[std::size_t(owner[i])];
+    if (id < 0) {
+      id = int(members.size());
+      members.emplace_back();
+    }
+    members[std::size_t(id)].push_back(cells[i]);
+  }
   std::vector<VoidCluster> clusters;
-  clusters.reserve(grown.size());
-  for (auto& g : grown) {
-    VoidCluster c;
-    c.id = int(clusters.size());
-    Moments m{map.center_of(g.front())};
-    for (const auto& k : g) m.add(map.center_of(k));
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(m.covariance(R * R / 12.0));
-    c.mean_m = m.origin + m.sum / m.n;
-    c.axes = eigen.eigenvectors();
-    c.variances_m2 = eigen.eigenvalues();
-    c.semi_axes_m = (5.0 * c.variances_m2.array().max(0.0)).sqrt();
-    c.volume_m3 = double(g.size()) * R * R * R;
-    c.fit_score = fit_score(m, R);
-    c.cells = std::move(g);
-    clusters.push_back(std::move(c));
+  clusters.reserve(members.size());
+  for (auto& cluster_cells : members) {
+    clusters.push_back(describe(std::move(cluster_cells), map));
+    clusters.back().id = int(clusters.size()) - 1;
   }
   return clusters;
 }

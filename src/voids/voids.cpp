@@ -155,7 +155,57 @@ void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now,
   }
 }
 
+/// Per column (x, y) of the grid, the centres of its lowest and highest occupied cells.
+std::vector<Eigen::Vector3d> column_extremes(const map::DenseGrid& grid) {
+  const Eigen::Vector3i n = grid.size();
+  const std::size_t columns = std::size_t(n.x()) * std::size_t(n.y());
+  std::vector<int> low(columns, -1), high(columns, -1);
+  std::size_t i = 0;
+  for (int z = 0; z < n.z(); ++z)
+    for (std::size_t c = 0; c < columns; ++c, ++i)
+      if (grid.state_at(i) == map::VoxelState::Occupied) {
+        if (low[c] < 0) low[c] = z;
+        high[c] = z;
+      }
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t c = 0; c < columns; ++c) {
+    if (low[c] < 0) continue;
+    for (const int z : {low[c], high[c]}) {
+      points.push_back(grid.center_of(grid.key(std::size_t(z) * columns + c)));
+      if (low[c] == high[c]) break;
+    }
+  }
+  return points;
+}
+
 }  // namespace
+
+std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull) {
+  hull = convex_hull(column_extremes(grid));
+  if (hull.empty()) return {};
+  const Eigen::Vector3i n = grid.size();
+  const int lo[3] = {grid.min_key().x - 32768, grid.min_key().y - 32768, grid.min_key().z - 32768};
+  const double R = grid.resolution_m();
+  const auto [x0, x1] = cell_range(hull.bounds_m.min().x(), hull.bounds_m.max().x(), R);
+  const auto [y0, y1] = cell_range(hull.bounds_m.min().y(), hull.bounds_m.max().y(), R);
+  core::LargeVector<std::uint8_t> inside(grid.cell_count(), 0);
+  for (int y = std::max(y0, lo[1]); y <= std::min(y1, lo[1] + n.y() - 1); ++y)
+    for (int x = std::max(x0, lo[0]); x <= std::min(x1, lo[0] + n.x() - 1); ++x) {
+      const auto range = hull.z_range((x + 0.5) * R, (y + 0.5) * R);
+      if (!range) continue;
+      const auto [z0, z1] = cell_range(range->first, range->second, R);
+      // The hull lies within the occupied cells' box, inside the grid; clamp all the same.
+      for (int z = std::max(z0, lo[2]); z <= std::min(z1, lo[2] + n.z() - 1); ++z) {
+        const std::size_t i = (std::size_t(z - lo[2]) * std::size_t(n.y()) + std::size_t(y - lo[1])) * std::size_t(n.x()) +
+                              std::size_t(x - lo[0]);
+        inside[i] = grid.state_at(i) == map::VoxelState::Unknown;
+      }
+    }
+  std::vector<map::VoxelKey> out;
+  for (std::size_t i = 0; i < inside.size(); ++i)
+    if (inside[i]) out.push_back(grid.key(i));
+  return out;
+}
 
 void VoidSet::rebuild(const map::OccupancyMap& map) {
   State& s = *state_;

@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     if (name != "paper-setting-2") continue;
     // The hot path on this map: 50 poses in the search space looking at its centre.
     const map::DenseGrid dense(map, Eigen::AlignedBox3d(map.stats().known_min_m, map.stats().known_max_m));
-    std::vector<std::uint8_t> target(dense.cell_count(), 0);
+    core::LargeVector<std::uint8_t> target(dense.cell_count(), 0);
     for (const auto& k : a.void_cells)
       if (dense.contains(k)) target[dense.index(k)] = 1;
     const auto rays = viewpoints::ray_fan(io::Intrinsics{}, 80, 60);

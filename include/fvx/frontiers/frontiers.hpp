@@ -13,6 +13,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "fvx/map/dense_grid.hpp"
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::frontiers {
@@ -27,6 +28,11 @@ inline map::VoxelKey unpack(std::uint64_t p) {
 
 /// True when `key` is free and has an unknown face-neighbour (the definition, cell by cell).
 bool is_frontier(const map::OccupancyMap& map, const map::VoxelKey& key);
+
+/// The frontier cells of `grid`, in key order, from scratch: what FrontierSet::rebuild finds
+/// when the grid holds every known cell of the map (a neighbour beyond the grid is then
+/// unknown). One pass over a flat array instead of octree searches.
+std::vector<map::VoxelKey> frontier_cells(const map::DenseGrid& grid);
 
 class FrontierSet {
  public:

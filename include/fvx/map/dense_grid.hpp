@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fvx/core/large_vector.hpp"
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::map {
@@ -48,13 +49,13 @@ class DenseGrid {
   double resolution_m_;
   VoxelKey min_;
   Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
-  std::vector<std::uint8_t> states_;
+  core::LargeVector<std::uint8_t> states_;
 };
 
 /// Per grid cell, the squared distance in cells to the centre of the nearest cell in `state`
 /// within the grid (an exact Euclidean distance transform, Felzenszwalb & Huttenlocher 2012,
 /// three separable passes); +infinity when the grid holds no such cell.
-std::vector<float> squared_distance_to(const DenseGrid& grid, VoxelState state);
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state);
 
 template <typename Visit>
 RayOutcome DenseGrid::walk(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction, double max_range_m,

@@ -82,6 +82,9 @@ struct Config {
   utility::Accumulation accumulation = utility::Accumulation::Sampled;
   std::size_t max_utility_vectors = utility::Config{}.max_vectors;
   int top = 10;                       ///< ranked views reported
+  /// Record every cell with utility in Result::utility_field (for pictures and clouds; on a
+  /// real map that is a million cells).
+  bool keep_utility_field = false;
   std::uint64_t seed = 1;             ///< orientation jitter, roll and IK restarts
   unsigned threads = 0;               ///< accumulation and scoring threads; 0: all cores (same result)
   /// Called on the calling thread as the search goes: the stage's name, work done, work in
@@ -146,7 +149,7 @@ struct Result {
   std::size_t poses_scored = 0;
   Pruning pruning;
   Timing timing;
-  std::vector<UtilityCell> utility_field;
+  std::vector<UtilityCell> utility_field;  ///< with Config::keep_utility_field only
   std::size_t utility_vectors = 0;
   std::size_t exact_utility_vectors = 0;  ///< what the exact accumulation traces (sampled: more)
   std::string reason;            ///< why `views` is empty; empty otherwise

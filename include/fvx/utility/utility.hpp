@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fvx/frontier_voids/frontier_voids.hpp"
+#include "fvx/core/large_vector.hpp"
 #include "fvx/map/dense_grid.hpp"
 
 namespace fvx::utility {
@@ -60,11 +61,11 @@ constexpr int kContributors = 4;
 constexpr std::size_t kMinSamples = 8;
 
 struct Field {
-  std::vector<double> util_m3;  ///< per grid cell (DenseGrid index), the sum of u_i through it
+  core::LargeVector<double> util_m3;  ///< per grid cell (DenseGrid index), the sum of u_i through it
   /// Per grid cell, the indices (into Analysis::frontier_voids) of the kContributors
   /// frontier-voids with the largest utility whose vectors pass it (ties: lower index), −1
   /// for unused slots, largest first.
-  std::vector<std::array<std::int32_t, kContributors>> contributors;
+  core::LargeVector<std::array<std::int32_t, kContributors>> contributors;
   std::size_t vectors = 0;      ///< utility vectors traced
   std::size_t exact_vectors = 0;  ///< what the exact accumulation traces (7 per frontier cell and frontier-void)
   bool sampled = false;         ///< vectors < exact_vectors: the field is an unbiased estimate

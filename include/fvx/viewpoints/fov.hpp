@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "fvx/io/intrinsics.hpp"
+#include "fvx/core/large_vector.hpp"
 #include "fvx/map/dense_grid.hpp"
 
 namespace fvx::viewpoints {
@@ -34,12 +35,12 @@ class FovScorer {
   /// `target`: per grid cell (DenseGrid index), non-zero where a cell counts. The grid must
   /// outlive the scorer.
   /// `near_targets_count`: false drops targets nearer than depth_min_m (see the file comment).
-  FovScorer(const map::DenseGrid& grid, std::vector<std::uint8_t> target, std::vector<Eigen::Vector3d> rays_sensor,
+  FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t> target, std::vector<Eigen::Vector3d> rays_sensor,
             double depth_max_m, double depth_min_m = 0.0, bool near_targets_count = true);
 
   /// Scratch space of one thread: a visit stamp per grid cell, so each cell counts once.
   struct Workspace {
-    std::vector<std::uint32_t> stamp;
+    core::LargeVector<std::uint32_t> stamp;
     std::uint32_t current = 0;
     std::vector<std::size_t> ray_targets;  ///< targets of the ray being traced
   };
@@ -58,7 +59,7 @@ class FovScorer {
 
  private:
   const map::DenseGrid& grid_;
-  std::vector<std::uint8_t> target_;
+  core::LargeVector<std::uint8_t> target_;
   std::vector<Eigen::Vector3d> rays_sensor_;
   double depth_max_m_;
   double depth_min_m_;

@@ -10,6 +10,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "fvx/map/dense_grid.hpp"
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::voids {
@@ -29,6 +30,13 @@ struct Hull {
 
 /// The hull of `points` (CGAL's convex_hull_3).
 Hull convex_hull(const std::vector<Eigen::Vector3d>& points);
+
+/// The void cells of `grid` (unknown cells inside the hull of its occupied cell centres), in
+/// key order, from scratch, and that hull: what VoidSet::rebuild finds when the grid holds
+/// every known cell of the map. The hull is built from each column's lowest and highest
+/// occupied cell only (the others lie between them), and the cells are read from the flat
+/// array, not the octree.
+std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull);
 
 class VoidSet {
  public:

@@ -1,6 +1,7 @@
 // The whole §IV-A/B analysis on real maps and on a simulated scene with known ground truth.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
 #include "fvx/frontier_voids/frontier_voids.hpp"
@@ -12,7 +13,7 @@
 namespace fvx::frontier_voids {
 namespace {
 
-Analysis analyse_map(const map::OccupancyMap& map, voids::VoidSet& void_set,
+Analysis analyse_with_sets(const map::OccupancyMap& map, voids::VoidSet& void_set,
                      const std::optional<Eigen::AlignedBox3d>& bounds = std::nullopt) {
   frontiers::FrontierSet frontier_set;
   frontier_set.rebuild(map);
@@ -39,12 +40,95 @@ void expect_invariants(const map::OccupancyMap& map, const voids::VoidSet& void_
     EXPECT_DOUBLE_EQ(to_dm3(fv.utility_m3), double(a.void_clusters[std::size_t(fv.void_id)].cells.size()) * R * R * R * 1000.0);
 }
 
+/// The one-shot dense path against the incremental sets rebuilt from scratch, its oracle.
+void expect_same(const Analysis& dense, const Analysis& sets, const std::string& what) {
+  EXPECT_EQ(dense.warnings, sets.warnings) << what;
+  EXPECT_EQ(dense.hull_faces, sets.hull_faces) << what;
+  EXPECT_EQ(dense.thin_void_cells, sets.thin_void_cells) << what;
+  ASSERT_EQ(dense.frontier_cells, sets.frontier_cells) << what;
+  ASSERT_EQ(dense.void_cells, sets.void_cells) << what;
+  ASSERT_EQ(dense.frontier_clusters.size(), sets.frontier_clusters.size()) << what;
+  for (std::size_t i = 0; i < dense.frontier_clusters.size(); ++i)
+    ASSERT_EQ(dense.frontier_clusters[i].cells, sets.frontier_clusters[i].cells) << what;
+  ASSERT_EQ(dense.void_clusters.size(), sets.void_clusters.size()) << what;
+  for (std::size_t i = 0; i < dense.void_clusters.size(); ++i)
+    ASSERT_EQ(dense.void_clusters[i].cells, sets.void_clusters[i].cells) << what;
+  ASSERT_EQ(dense.frontier_voids.size(), sets.frontier_voids.size()) << what;
+  for (std::size_t i = 0; i < dense.frontier_voids.size(); ++i)
+    ASSERT_EQ(dense.frontier_voids[i].frontier_ids, sets.frontier_voids[i].frontier_ids) << what;
+}
+
+void expect_same_as_sets(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds,
+                         int min_void_width_cells, const std::string& what) {
+  frontiers::FrontierSet frontier_set;
+  frontier_set.rebuild(map);
+  voids::VoidSet void_set;
+  void_set.rebuild(map);
+  const voids::ClusterConfig config;
+  expect_same(analyse_map(map, bounds, config, min_void_width_cells),
+              analyse(map, frontier_set, &void_set, bounds, config, min_void_width_cells), what);
+  expect_same(analyse_map(map, bounds, config, 1, false), analyse(map, frontier_set, nullptr, bounds, config),
+              what + ", frontiers only");
+}
+
+/// Random blocks of free and occupied cells (pruned leaves among them) over unknown space.
+map::OccupancyMap random_blocks(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> corner(-20, 20), extent(1, 9), state(0, 3);
+  map::OccupancyMap map(0.1);
+  for (int b = 0; b < 60; ++b) {
+    const int x0 = corner(rng), y0 = corner(rng), z0 = corner(rng) / 2;
+    const int ex = extent(rng), ey = extent(rng), ez = extent(rng);
+    const map::VoxelState s = state(rng) == 0 ? map::VoxelState::Occupied : map::VoxelState::Free;
+    for (int z = z0; z < z0 + ez; ++z)
+      for (int y = y0; y < y0 + ey; ++y)
+        for (int x = x0; x < x0 + ex; ++x)
+          map.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), std::uint16_t(32768 + z)}, s);
+  }
+  return map;
+}
+
+TEST(Analysis, FromScratchEqualsTheSetsOnRandomMaps) {
+  for (std::uint32_t seed = 1; seed <= 12; ++seed) {
+    const map::OccupancyMap map = random_blocks(seed);
+    const std::string what = "seed " + std::to_string(seed);
+    expect_same_as_sets(map, std::nullopt, 1, what);
+    expect_same_as_sets(map, Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1.5, -0.5), Eigen::Vector3d(1.2, 0.8, 0.9)), 2,
+                        what + ", bounds and width 2");
+  }
+}
+
+TEST(Analysis, FromScratchEqualsTheSetsOnDegenerateMaps) {
+  map::OccupancyMap free_only(0.1), flat(0.1), edge(0.5);
+  for (int x = 0; x < 5; ++x)
+    for (int y = 0; y < 5; ++y) {
+      free_only.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), 32768}, map::VoxelState::Free);
+      flat.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), 32768}, map::VoxelState::Occupied);
+    }
+  for (const std::uint16_t k : {std::uint16_t(0), std::uint16_t(1), std::uint16_t(0xFFFF)})
+    edge.set_state({k, std::uint16_t(k ^ 1), 7}, map::VoxelState::Free);  // free cells at the key space's edge
+  expect_same_as_sets(free_only, std::nullopt, 1, "free only");
+  expect_same_as_sets(flat, std::nullopt, 1, "flat");
+  expect_same_as_sets(edge, std::nullopt, 1, "key space edge");
+  expect_same_as_sets(map::OccupancyMap(0.1), std::nullopt, 1, "empty");
+  expect_same_as_sets(free_only, Eigen::AlignedBox3d(Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(6, 6, 6)), 1,
+                      "bounds without known cells");
+}
+
+TEST(AnalysisRealData, FromScratchEqualsTheSetsOnRealMaps) {
+  for (const char* name : {"octomap-maps/slambook_ch13/octomap.bt", "octomap-maps/octomap-share-data/geb079.bt"}) {
+    FVX_REAL_DATA_OR_SKIP(path, name);
+    const map::OccupancyMap map = map::OccupancyMap::load(path);
+    expect_same_as_sets(map, std::nullopt, 1, name);
+  }
+}
+
 TEST(AnalysisRealData, InvariantsHoldOnRealMaps) {
   for (const char* name : {"octomap-maps/slambook_ch13/octomap.bt", "octomap-maps/octomap-share-data/geb079.bt"}) {
     FVX_REAL_DATA_OR_SKIP(path, name);
     const map::OccupancyMap map = map::OccupancyMap::load(path);
     voids::VoidSet void_set;
-    const Analysis a = analyse_map(map, void_set);
+    const Analysis a = analyse_with_sets(map, void_set);
     EXPECT_GT(a.frontier_cells.size(), 1000u) << name;
     EXPECT_GT(a.void_cells.size(), 1000u) << name;
     EXPECT_TRUE(a.warnings.empty()) << name;
@@ -61,17 +145,17 @@ TEST(Analysis, DegenerateMapsGiveEmptyResultsWithAWarning) {
     }
   for (const map::OccupancyMap* map : {&free_only, &flat}) {
     voids::VoidSet void_set;
-    const Analysis a = analyse_map(*map, void_set);
+    const Analysis a = analyse_with_sets(*map, void_set);
     EXPECT_TRUE(a.void_cells.empty());
     EXPECT_FALSE(a.warnings.empty());
   }
   voids::VoidSet void_set;
   const Analysis outside =
-      analyse_map(free_only, void_set, Eigen::AlignedBox3d(Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(6, 6, 6)));
+      analyse_with_sets(free_only, void_set, Eigen::AlignedBox3d(Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(6, 6, 6)));
   EXPECT_TRUE(outside.frontier_cells.empty());
   EXPECT_NE(outside.warnings.back().find("no known cell"), std::string::npos);
   const map::OccupancyMap empty(0.1);
-  EXPECT_FALSE(analyse_map(empty, void_set).warnings.empty());
+  EXPECT_FALSE(analyse_with_sets(empty, void_set).warnings.empty());
 }
 
 // The closed box with one opening, scanned through the opening: the interior is a void,
@@ -93,7 +177,7 @@ TEST(Analysis, ClosedBoxInteriorIsAVoidPairedWithTheOpening) {
   // Search space: the box's interior.
   const Eigen::AlignedBox3d interior = scene.info.containers[0].box;
   voids::VoidSet void_set;
-  const Analysis a = analyse_map(map, void_set, interior);
+  const Analysis a = analyse_with_sets(map, void_set, interior);
   expect_invariants(map, void_set, a);
   ASSERT_FALSE(a.void_clusters.empty());
   // The interior's unknown cells (centres inside the interior): the voids are exactly those

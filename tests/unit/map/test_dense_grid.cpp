@@ -86,7 +86,7 @@ TEST(DenseGrid, SquaredDistanceToOccupiedEqualsBruteForce) {
       occupied.emplace_back(k.x, k.y, k.z);
     }
   ASSERT_GT(occupied.size(), 20u);
-  const std::vector<float> d = squared_distance_to(grid, VoxelState::Occupied);
+  const auto d = squared_distance_to(grid, VoxelState::Occupied);
   for (std::size_t i = 0; i < grid.cell_count(); ++i) {
     const VoxelKey k = grid.key(i);
     int best = std::numeric_limits<int>::max();

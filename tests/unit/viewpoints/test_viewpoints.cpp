@@ -79,7 +79,7 @@ TEST(SampleOrientations, AimAtTheTargetsWithinTheJitter) {
 struct RandomGrid {
   map::OccupancyMap map{0.1};
   std::unique_ptr<map::DenseGrid> grid;
-  std::vector<std::uint8_t> target;
+  core::LargeVector<std::uint8_t> target;
   explicit RandomGrid(std::uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
