@@ -7,7 +7,10 @@
 # one's with the same seed (both scored by the same field-of-view ray cast).
 #   scripts/bench-nbv-scale.sh [SEEDS]     SEEDS default "1 2 3 4"
 # Maps: octomap-maps/slambook_ch13/octomap.bt and octomap-share-data/geb079.bt from
-# FVX_REAL_DATA (default ../shared/data). The exact path takes 15-45 s per map and seed.
+# FVX_REAL_DATA (default ../shared/data), and any in FVX_NBV_MAPS (space-separated paths).
+# The exact path takes 15-45 s per real map and seed. Then the two paper replicas (two
+# simulated scans each, 2.5 cm) on the fvx arm at (0.2, 0, 0): sampled, exact and the
+# exhaustive strategy, the median wall time of the sampled run over three.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${FVX_BUILD_DIR:-build}"
@@ -19,6 +22,8 @@ command -v /usr/bin/time >/dev/null || { echo "bench-nbv-scale: needs /usr/bin/t
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 maps=("$data/octomap-maps/slambook_ch13/octomap.bt" "$data/octomap-maps/octomap-share-data/geb079.bt")
+# shellcheck disable=SC2206
+[ -n "${FVX_NBV_MAPS:-}" ] && maps+=(${FVX_NBV_MAPS})
 printf '| map | seed | mode | wall s | search s | accumulation s | peak MiB | vectors | best U | sampled/exact U |\n'
 printf '|---|---|---|---|---|---|---|---|---|---|\n'
 for map in "${maps[@]}"; do
@@ -37,5 +42,32 @@ for map in "${maps[@]}"; do
         "$(jq '.results.timing_s.accumulation' "$tmp/$mode.json")" "$((kb / 1024))" \
         "$(jq '.results.utility_vectors' "$tmp/$mode.json")" "${best[$mode]}" "$ratio"
     done
+  done
+done
+
+# The paper replicas: two first views (from above the base, from one side), 2.5 cm.
+arm=(--capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0)
+printf '\n| replica | seed | sampled wall s (median of 3) | sampled U | exact U | exhaustive U | exhaustive wall s | sampled/exact | sampled/exhaustive |\n'
+printf '|---|---|---|---|---|---|---|---|---|\n'
+for scene in paper-setting-1 paper-setting-2; do
+  for view in "0.05,0,0.95" "0.3,0.75,0.85"; do
+    "$fvx" simulate "data/scenes/$scene.ply" --look-at "$view,0.6,0,0.3" -o "$tmp/$scene-$view.pcd" >/dev/null 2>&1
+  done
+  "$fvx" integrate "$tmp/$scene-"*.pcd -r 0.025 --no-register -o "$tmp/$scene.ot" >/dev/null
+  for seed in $seeds; do
+    walls=()
+    for _ in 1 2 3; do
+      /usr/bin/time -f '%e' -o "$tmp/time" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" -o "$tmp/s.json"
+      walls+=("$(cat "$tmp/time")")
+    done
+    median="$(printf '%s\n' "${walls[@]}" | sort -n | sed -n 2p)"
+    "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" --accumulation exact -o "$tmp/e.json"
+    /usr/bin/time -f '%e' -o "$tmp/time" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" \
+      --strategy exhaustive -o "$tmp/x.json"
+    s="$(jq '.results.best_void_cells_seen' "$tmp/s.json")" e="$(jq '.results.best_void_cells_seen' "$tmp/e.json")"
+    x="$(jq '.results.best_void_cells_seen' "$tmp/x.json")"
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$scene" "$seed" "$median" "$s" "$e" "$x" \
+      "$(cat "$tmp/time")" "$(awk -v a="$s" -v b="$e" 'BEGIN{printf "%.3f", b ? a/b : 0}')" \
+      "$(awk -v a="$s" -v b="$x" 'BEGIN{printf "%.3f", b ? a/b : 0}')"
   done
 done

@@ -39,6 +39,11 @@ const CommandSpec kNbvSpec = {
                  {"refine", 0, "K", "step the K best poses back along their optical axis and score the steps "
                                     "(default 10; 0: off, as the paper)"},
                  {"refine-step", 0, "M", "refinement step and its limit, metres: STEP or STEP,MAX (default 0.1,0.8)"},
+                 {"polish", 0, "K", "score the K best poses at 5 more rolls about their optical axis, 30 degrees "
+                                    "apart (default 3; 0: off, as the paper)"},
+                 {"climb", 0, "N", "then N rounds of a local climb from each of the K best poses: moved 5 cm along "
+                                   "each axis and tilted 4 degrees, halving when nothing is better (default 0: off, "
+                                   "as the paper)"},
                  {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
                  {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
                  {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
@@ -168,6 +173,7 @@ Json view_json(const nbv::View& v, int rank, double R, const frontier_voids::Ana
   j["utility_from"] = from;
   j["pose_index"] = v.pose_index;
   j["stepped_back_from"] = v.stepped_back_from ? Json(*v.stepped_back_from) : Json(nullptr);
+  j["polished_from"] = v.polished_from ? Json(*v.polished_from) : Json(nullptr);
   return j;
 }
 
@@ -186,6 +192,7 @@ Json pruning_json(const nbv::Pruning& p) {
           {"valid_poses", p.valid_poses},
           {"refinement_steps", p.refinement_steps},
           {"refinement_poses", p.refinement_poses},
+          {"polish_poses", p.polish_poses},
           {"culled_no_void_in_frustum", p.culled},
           {"seeing_no_void", p.seeing_nothing}};
 }
@@ -256,6 +263,8 @@ int run_nbv(const Args& args) {
     if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
       throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
   }
+  config.polish_poses = int(args.integer("polish", config.polish_poses, 0, max_int));
+  config.climb_rounds = int(args.integer("climb", config.climb_rounds, 0, 100));
   config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
   config.count_near_void_cells = !args.has("far-voids-only");
   config.view_bounds_m = parse_bounds(args, "view-bounds");
@@ -313,6 +322,11 @@ int run_nbv(const Args& args) {
                       {"refine_poses", config.refine_poses},
                       {"refine_step_m", config.refine_step_m},
                       {"refine_max_m", config.refine_max_m},
+                      {"polish_poses", config.polish_poses},
+                      {"polish_rolls", config.polish_rolls},
+                      {"climb_rounds", config.climb_rounds},
+                      {"climb_step_m", config.climb_step_m},
+                      {"climb_angle_deg", config.climb_angle_deg},
                       {"exhaustive_rolls", config.exhaustive_rolls},
                       {"count_near_void_cells", config.count_near_void_cells},
                       {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},

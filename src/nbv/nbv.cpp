@@ -37,6 +37,11 @@ std::vector<std::string> Config::validate() const {
   if (view_bounds_m && (view_bounds_m->isEmpty() || !view_bounds_m->min().allFinite() || !view_bounds_m->max().allFinite()))
     problems.push_back("view_bounds_m must be a finite, non-empty box");
   if (refine_poses < 0) problems.push_back("refine_poses must be >= 0");
+  if (polish_poses < 0 || polish_rolls < 1 || polish_rolls > 360)
+    problems.push_back("polish_poses must be >= 0 and polish_rolls in [1, 360]");
+  if (climb_rounds < 0 || climb_rounds > 100 || !(climb_step_m > 0.0 && climb_step_m <= 1.0) ||
+      !(climb_angle_deg > 0.0 && climb_angle_deg <= 45.0))
+    problems.push_back("climb_rounds must be in [0, 100], climb_step_m in (0, 1] m, climb_angle_deg in (0, 45]");
   if (!(refine_step_m > 0.0 && refine_step_m <= refine_max_m && refine_max_m <= 10.0))
     problems.push_back("refine_step_m and refine_max_m must satisfy 0 < step <= max <= 10 m");
   if (exhaustive_rolls < 1) problems.push_back("exhaustive_rolls must be >= 1");
@@ -47,40 +52,6 @@ std::vector<std::string> Config::validate() const {
 }
 
 namespace detail {
-
-namespace {
-
-/// The refinement step (Config::refine_poses): the best poses, stepped back along their
-/// optical axis, each step kept if it passes the position and orientation checks.
-std::vector<Pose> stepped_back(const Search& s, const std::vector<Pose>& poses, const std::vector<std::size_t>& U,
-                               Pruning& pruning) {
-  std::vector<std::size_t> order(poses.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return U[l] > U[r]; });
-  std::vector<Pose> out;
-  Pruning checks;  // the refinement's own rejections are not the paper's pruning counts
-  for (std::size_t j = 0; j < order.size() && j < std::size_t(s.config.refine_poses) && U[order[j]] > 0; ++j) {
-    const Eigen::Isometry3d& T = poses[order[j]].T_world_sensor;
-    for (int step = 1; step * s.config.refine_step_m <= s.config.refine_max_m + 1e-9; ++step) {
-      const Eigen::Vector3d q = T.translation() - step * s.config.refine_step_m * T.linear().col(2);
-      const auto key = s.map.key_of(q);
-      if (!key || !s.grid.contains(*key)) break;  // beyond the known cells nothing is free
-      ++pruning.refinement_steps;
-      if (!s.keep_position(*key, s.grid.center_of(*key), checks)) continue;
-      Pose pose;
-      pose.T_world_sensor.translation() = s.grid.center_of(*key);
-      pose.T_world_sensor.linear() = s.snap_to_reach(pose.T_world_sensor.translation(), T.linear());
-      pose.cell = poses[order[j]].cell;  // it serves the same frontier-voids
-      pose.stepped_back_from = order[j];
-      if (s.keep_orientation(pose, s.config.seed ^ (0xD1B54A32D192ED03ull * (pruning.refinement_steps + 1)), checks))
-        out.push_back(std::move(pose));
-    }
-  }
-  pruning.refinement_poses = out.size();
-  return out;
-}
-
-}  // namespace
 
 // The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
@@ -148,10 +119,7 @@ Result select_frontier_void(Search& s, Result result) {
 
   t0 = Clock::now();
   std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
-  std::vector<Pose> refined = stepped_back(s, poses, U, pruning);
-  const std::vector<std::size_t> U_refined = s.score(*s.void_scorer, refined, result);
-  poses.insert(poses.end(), std::make_move_iterator(refined.begin()), std::make_move_iterator(refined.end()));
-  U.insert(U.end(), U_refined.begin(), U_refined.end());
+  refine(s, poses, U, result);
   result.views = s.rank(poses, U, &field.util_m3, &field);
   result.timing.scoring_s = seconds_since(t0);
 

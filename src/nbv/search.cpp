@@ -206,6 +206,7 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     v.T_world_sensor = pose.T_world_sensor;
     v.pose_index = i;
     if (pose.stepped_back_from != kNoCell) v.stepped_back_from = pose.stepped_back_from;
+    if (pose.polished_from != kNoCell) v.polished_from = pose.polished_from;
     v.joints_rad = pose.joints_rad;
     v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
     for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));

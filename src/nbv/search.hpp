@@ -28,6 +28,7 @@ struct Pose {
   std::size_t cell = kNoCell;
   Eigen::VectorXd joints_rad;
   std::size_t stepped_back_from = kNoCell;  ///< refinement: the pose (index) it stepped back from
+  std::size_t polished_from = kNoCell;      ///< polish: the pose (index) it was turned or moved from
 };
 
 struct Search {
@@ -82,6 +83,12 @@ struct Search {
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;
 };
+
+/// A pose at p_world with rotation R that serves the same cell as `from` (index from_index).
+Pose moved(const Pose& from, const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R, std::size_t from_index);
+/// After the N sampled poses are scored: the refinement (stepping back), the polish (other
+/// rolls) and the climb (refine.cpp, Config); appends the new poses and their U.
+void refine(const Search& s, std::vector<Pose>& poses, std::vector<std::size_t>& U, Result& result);
 
 Result select_frontier_void(Search& s, Result result);
 Result select_exhaustive(Search& s, Result result);

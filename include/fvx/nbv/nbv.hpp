@@ -62,6 +62,23 @@ struct Config {
   int refine_poses = 10;
   double refine_step_m = 0.1;
   double refine_max_m = 0.8;
+  /// Polish (not in the paper): an orientation's roll about its optical axis is drawn at
+  /// random, yet the image is not square, so the same axis at another roll sees other cells
+  /// (on real maps the U of one axis moves by 10-15 % with the roll). The `polish_poses`
+  /// best poses after refinement are also scored at polish_rolls − 1 more rolls, evenly
+  /// over 180° (the image is symmetric under a half turn). 0: off.
+  int polish_poses = 3;
+  int polish_rolls = 6;
+  /// Climb (not in the paper): from each of the polish_poses best poses after the polish (at
+  /// least one), each round scores it moved by ±climb_step_m along each world axis and
+  /// tilted by ±climb_angle_deg about the image axes, and moves to the best if it sees more;
+  /// otherwise its step and tilt halve. 0: off (the default). Measured: it raises the best
+  /// U by 1-17 % on real maps, for 0.3 s more scoring there, but it favours whichever field's
+  /// candidates start in the higher basin: on a small map with a tenth of its vectors sampled
+  /// the sampled path then averaged 91 % of the exact path's best U (100 % without it).
+  int climb_rounds = 0;
+  double climb_step_m = 0.05;
+  double climb_angle_deg = 4.0;
   /// Void cells that a view already taken looked at without revealing them (something the
   /// map does not hold yet blocks them from there); they no longer count in U. Filled by the
   /// exploration loop (pipeline::State), empty for a single search.
@@ -109,6 +126,8 @@ struct View {
   std::size_t pose_index = 0;            ///< order in which the pose was generated
   /// Refinement: the pose_index of the sampled pose this one stepped back from.
   std::optional<std::size_t> stepped_back_from;
+  /// Polish and climb: the pose_index of the pose this one was turned or moved from.
+  std::optional<std::size_t> polished_from;
 };
 
 /// What each step removed or kept, so a user can see why a region got no view.
@@ -127,6 +146,7 @@ struct Pruning {
   std::size_t valid_poses = 0;              ///< scored by ray tracing
   std::size_t refinement_steps = 0;         ///< positions stepped back from the best poses
   std::size_t refinement_poses = 0;         ///< … that passed pruning and reach, scored as well
+  std::size_t polish_poses = 0;             ///< other rolls and climb steps that passed the checks, scored as well
   std::size_t culled = 0;                   ///< exhaustive: poses with no void cluster in their frustum (U = 0)
   std::size_t seeing_nothing = 0;           ///< valid poses with U = 0
 };

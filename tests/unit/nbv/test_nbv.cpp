@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "fvx/core/error.hpp"
+#include "fvx/map/occupancy_map.hpp"
 #include "fvx/nbv/nbv.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
@@ -76,7 +77,8 @@ TEST(Nbv, ClosedBoxTheBestViewLooksThroughTheOpening) {
   const Reach reach = arm.reach({0.2, 0.0, 0.0});
   const Result fv = select(box.map, box.analysis, reach, coarse());
   ASSERT_FALSE(fv.views.empty()) << fv.reason;
-  EXPECT_EQ(fv.poses_scored, 50u);
+  EXPECT_EQ(fv.pruning.valid_poses, 50u);
+  EXPECT_EQ(fv.poses_scored, 50u + fv.pruning.refinement_poses + fv.pruning.polish_poses);
   // The optical axis crosses the lid (z 0.38…0.40) inside the opening (x 0.69…0.85,
   // y −0.10…0.06), give or take one cell.
   const Eigen::Isometry3d& T = fv.views.front().T_world_sensor;
@@ -132,6 +134,8 @@ TEST(Nbv, SteppingBackAddsPosesBehindTheBestOnes) {
   const ClosedBox& box = closed_box();
   Config paper = coarse();  // free-flying: above the lid the arm reaches few steps back
   paper.refine_poses = 0;
+  paper.polish_poses = 0;  // stepping back alone
+  paper.climb_rounds = 0;
   paper.top = 100;
   Config refined = paper;
   refined.refine_poses = 10;
@@ -198,17 +202,19 @@ TEST(Nbv, TheSameSeedGivesTheSameViewsOnAnyThreadCount) {
 }
 
 // The sampled accumulation, forced to sample (a tenth of the exact vectors), against the exact
-// one (its oracle), free-flying and on the arm: over seeds 1–3 its best views see on average
-// at least 95 % of what the exact best views see (measured: 101 % and 98 %). One seed alone
-// ranges 79–132 % (the exact path's own spread over seeds is 3–6 %): the best of 50 poses
-// drawn from the top cells moves with any change of the field, up or down.
+// one (its oracle), free-flying and on the arm: over seeds 1–8 its best views see on average
+// at least 95 % of what the exact best views see (measured: 100 % and 103 %). One seed alone
+// ranges 69–116 %: views into the box go through a 16 cm opening, and which candidate cells
+// line up with it changes with any change of the field, up or down. With the climb on
+// (Config::climb_rounds 4) the mean drops to 91 % free-flying: the exact field's candidates
+// climb higher; that is why the climb is off by default.
 TEST(Nbv, TheSampledFieldsBestViewsSeeWhatTheExactOnesDoOnAverage) {
   const ClosedBox& box = closed_box();
   const Arm arm;
   for (const bool on_arm : {false, true}) {
     const std::optional<Reach> reach = on_arm ? std::optional<Reach>(arm.reach({0.2, 0, 0})) : std::nullopt;
     double exact_sum = 0, sampled_sum = 0;
-    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    for (const std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u}) {
       Config exact = coarse();
       exact.seed = seed;
       exact.accumulation = utility::Accumulation::Exact;
@@ -231,6 +237,91 @@ TEST(Nbv, TheSampledFieldsBestViewsSeeWhatTheExactOnesDoOnAverage) {
       }
     }
     EXPECT_GE(sampled_sum, 0.95 * exact_sum) << (on_arm ? "arm" : "free-flying");
+  }
+}
+
+/// Two first views of a paper replica (bench_nbv's): from above the arm's base and one side.
+map::OccupancyMap replica(const std::string& name) {
+  const sim::Scene scene = sim::builtin_scene(name);
+  const Eigen::Vector3d target = scene.info.search_space->center() - Eigen::Vector3d(0, 0, 0.1);
+  std::vector<Eigen::Isometry3d> views;
+  for (const Eigen::Vector3d& eye : {Eigen::Vector3d(0.05, 0.0, 0.95), Eigen::Vector3d(0.3, 0.75, 0.85)}) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = eye;
+    T.linear() = viewpoints::look_along(target - eye, 0.0);
+    views.push_back(T);
+  }
+  map::OccupancyMap map(0.025);
+  test::integrate_views(map, scene, views);
+  return map;
+}
+
+/// The best view of the sampled accumulation (defaults) against the exact one with the same
+/// seed, both scored by the same field-of-view ray cast: at least `share` of its void cells.
+/// Returns whether the default budget made it sample (below it the two are one field).
+bool expect_sampled_sees_what_exact_sees(const map::OccupancyMap& map, const std::optional<Reach>& reach,
+                                         std::uint64_t seed, double share, const std::string& what) {
+  voids::ClusterConfig clusters;
+  clusters.seed = seed;
+  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, std::nullopt, clusters);
+  Config config;
+  config.seed = seed;
+  const Result sampled = select(map, a, reach, config);
+  config.accumulation = utility::Accumulation::Exact;
+  const Result exact = select(map, a, reach, config);
+  EXPECT_FALSE(exact.views.empty()) << what;
+  EXPECT_FALSE(sampled.views.empty()) << what;
+  if (exact.views.empty() || sampled.views.empty()) return false;
+  EXPECT_GE(double(sampled.views.front().void_cells_seen), share * double(exact.views.front().void_cells_seen))
+      << what << " seed " << seed << ": sampled " << sampled.views.front().void_cells_seen << ", exact "
+      << exact.views.front().void_cells_seen;
+  return sampled.utility_vectors < exact.utility_vectors;
+}
+
+// The criterion on both paper replicas (2.5 cm, the fvx arm at (0.2, 0, 0)), seed by
+// seed. Setting 1 traces about 8 M exact vectors and samples; setting 2 about 1.1 M, under
+// the default budget, where the sampled field is the exact one. Measured over seeds 1–5 on
+// maps from the same two views (scripts/bench-nbv-scale.sh): 98.4–101 % with the polish,
+// 94.5–106 % without it.
+TEST(Nbv, OnThePaperReplicasTheSampledBestViewSeesWhatTheExactOneSees) {
+  const Arm arm;
+  bool sampled = false;
+  for (const std::string name : {"paper-setting-1", "paper-setting-2"}) {
+    const map::OccupancyMap map = replica(name);
+    for (const std::uint64_t seed : {1u, 2u, 3u})
+      sampled |= expect_sampled_sees_what_exact_sees(map, arm.reach({0.2, 0, 0}), seed, 0.95, name);
+  }
+  EXPECT_TRUE(sampled) << "no replica sampled: the test compares nothing";
+}
+
+// The same on the real slambook map (5 cm, 374-451 M exact vectors: 35-40 s each), free-flying.
+TEST(NbvRealData, OnTheSlambookMapTheSampledBestViewSeesWhatTheExactOneSees) {
+  FVX_REAL_DATA_OR_SKIP(path, "octomap-maps/slambook_ch13/octomap.bt");
+  const map::OccupancyMap map = map::OccupancyMap::load(path);
+  for (const std::uint64_t seed : {1u, 2u})
+    EXPECT_TRUE(expect_sampled_sees_what_exact_sees(map, std::nullopt, seed, 0.95, "slambook")) << "must sample";
+}
+
+// The polish and the climb only add poses: the best view never sees less than without them.
+TEST(Nbv, ThePolishAndTheClimbNeverLowerTheBestView) {
+  const ClosedBox& box = closed_box();
+  const Arm arm;
+  for (const bool on_arm : {false, true}) {
+    const std::optional<Reach> reach = on_arm ? std::optional<Reach>(arm.reach({0.2, 0, 0})) : std::nullopt;
+    Config plain = coarse();
+    plain.polish_poses = 0;
+    Config polished = coarse();
+    polished.climb_rounds = 4;
+    const Result before = select(box.map, box.analysis, reach, plain);
+    const Result after = select(box.map, box.analysis, reach, polished);
+    ASSERT_FALSE(before.views.empty());
+    ASSERT_FALSE(after.views.empty());
+    EXPECT_GE(after.views.front().void_cells_seen, before.views.front().void_cells_seen);
+    EXPECT_GT(after.pruning.polish_poses, 0u);
+    EXPECT_EQ(before.pruning.polish_poses, 0u);
+    if (after.views.front().polished_from) {  // a polished pose came from a pose scored before it
+      EXPECT_LT(*after.views.front().polished_from, after.views.front().pose_index);
+    }
   }
 }
 
