@@ -37,12 +37,14 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
                      std::vector<Eigen::Vector3d> rays_sensor, double depth_max_m, double depth_min_m,
                      bool near_targets_count)
     : grid_(grid),
-      target_(std::move(target)),
+      cells_(std::move(target)),
       rays_sensor_(std::move(rays_sensor)),
       depth_max_m_(depth_max_m),
       depth_min_m_(depth_min_m),
       count_from_m_(near_targets_count ? 0.0 : depth_min_m) {
-  FVX_ASSERT(target_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
+  FVX_ASSERT(cells_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
+  const std::uint8_t* states = grid_.states();
+  for (std::size_t i = 0; i < cells_.size(); ++i) cells_[i] = std::uint8_t(states[i] | (cells_[i] ? kTarget : 0));
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
 
@@ -66,15 +68,15 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
     ws.ray_targets.clear();
     std::size_t hit = std::size_t(-1);
-    grid_.walk(origin, R * ray, depth_max_m_ * ray.norm(), [&](std::size_t i, map::VoxelState state) {
+    grid_.walk_cells(cells_.data(), origin, R * ray, depth_max_m_ * ray.norm(), [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;
-      if (state == map::VoxelState::Occupied) {
+      if (map::VoxelState(cell & 3) == map::VoxelState::Occupied) {
         hit = i;
         return false;
       }
       // The sensor measures nothing nearer than the minimum depth, so it cannot promise
       // to reveal a target there (its cell centre's depth).
-      if (target_[i] && ws.stamp[i] != now &&
+      if ((cell & kTarget) && ws.stamp[i] != now &&
           (count_from_m_ <= 0.0 || (grid_.center_of(grid_.key(i)) - origin).dot(axis) >= count_from_m_))
         ws.ray_targets.push_back(i);
       return true;

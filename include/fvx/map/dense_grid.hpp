@@ -43,7 +43,18 @@ class DenseGrid {
   /// `max_range_m` (MaxRange) or at the edge of the box (OutOfBounds).
   template <typename Visit>
   RayOutcome walk(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction, double max_range_m,
-                  Visit&& visit) const;
+                  Visit&& visit) const {
+    return walk_cells(states_.data(), origin_m, direction, max_range_m,
+                      [&](std::size_t i, std::uint8_t cell) { return visit(i, VoxelState(cell)); });
+  }
+  /// The same walk over `cells`, an array laid out like the grid whose low two bits are the
+  /// VoxelState (the outcome reads them) and whose other bits the caller keeps its own flags
+  /// in: visit(index, cell byte). One load per cell where state and flags sit in one array.
+  template <typename Visit>
+  RayOutcome walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction,
+                        double max_range_m, Visit&& visit) const;
+  /// The raw states (a VoxelState per byte), in index order.
+  const std::uint8_t* states() const { return states_.data(); }
 
  private:
   double resolution_m_;
@@ -58,8 +69,8 @@ class DenseGrid {
 core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state);
 
 template <typename Visit>
-RayOutcome DenseGrid::walk(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction, double max_range_m,
-                           Visit&& visit) const {
+RayOutcome DenseGrid::walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m,
+                                 const Eigen::Vector3d& direction, double max_range_m, Visit&& visit) const {
   const double R = resolution_m_;
   // Cell of the origin on the map's key grid (as OctoMap: floor(coordinate / R) + 32768).
   int cell[3];
@@ -83,15 +94,38 @@ RayOutcome DenseGrid::walk(const Eigen::Vector3d& origin_m, const Eigen::Vector3
       t_delta[a] = R / std::abs(d[a]);
     }
   }
+  // Steps left along each axis before the ray leaves the box; the walk state in scalars, so
+  // that it stays in registers (arrays indexed by the axis went through memory every cell).
+  std::int64_t left[3];
+  for (int a = 0; a < 3; ++a)
+    left[a] = step[a] > 0 ? size_[a] - 1 - (cell[a] - lo[a]) : step[a] < 0 ? cell[a] - lo[a] : INT64_MAX;
+  double tx = t_max[0], ty = t_max[1], tz = t_max[2];
+  std::int64_t left_x = left[0], left_y = left[1], left_z = left[2];
+  const std::int64_t sx = step[0] * stride[0], sy = step[1] * stride[1], sz = step[2] * stride[2];
   while (true) {
-    const VoxelState s = VoxelState(states_[std::size_t(index)]);
-    if (!visit(std::size_t(index), s)) return s == VoxelState::Occupied ? RayOutcome::Hit : RayOutcome::Unknown;
-    const int a = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-    if (t_max[a] > max_range_m) return RayOutcome::MaxRange;
-    cell[a] += step[a];
-    if (cell[a] < lo[a] || cell[a] - lo[a] >= size_[a]) return RayOutcome::OutOfBounds;
-    index += step[a] * stride[a];
-    t_max[a] += t_delta[a];
+    const std::uint8_t byte = cells[std::size_t(index)];
+    if (!visit(std::size_t(index), byte))
+      return VoxelState(byte & 3) == VoxelState::Occupied ? RayOutcome::Hit : RayOutcome::Unknown;
+
+    if (tx < ty) {
+      if (tx < tz) {
+        if (tx > max_range_m) return RayOutcome::MaxRange;
+        if (left_x-- == 0) return RayOutcome::OutOfBounds;
+        index += sx;
+        tx += t_delta[0];
+        continue;
+      }
+    } else if (ty < tz) {
+      if (ty > max_range_m) return RayOutcome::MaxRange;
+      if (left_y-- == 0) return RayOutcome::OutOfBounds;
+      index += sy;
+      ty += t_delta[1];
+      continue;
+    }
+    if (tz > max_range_m) return RayOutcome::MaxRange;
+    if (left_z-- == 0) return RayOutcome::OutOfBounds;
+    index += sz;
+    tz += t_delta[2];
   }
 }
 

@@ -59,7 +59,10 @@ class FovScorer {
 
  private:
   const map::DenseGrid& grid_;
-  core::LargeVector<std::uint8_t> target_;
+  /// Per grid cell: its VoxelState in the low two bits, kTarget when it is a target: the
+  /// walk loads one byte per cell.
+  core::LargeVector<std::uint8_t> cells_;
+  static constexpr std::uint8_t kTarget = 4;
   std::vector<Eigen::Vector3d> rays_sensor_;
   double depth_max_m_;
   double depth_min_m_;
