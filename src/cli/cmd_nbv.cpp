@@ -206,6 +206,40 @@ std::pair<int, int> parse_rays(const Args& args) {
           int(parse_int_in(text.substr(x + 1), "--rays rows", 1, 4096))};
 }
 
+/// The search's options: strategy, sensor, rays, sampling, refinement, polish, accumulation.
+nbv::Config parse_search_options(const Args& args) {
+  const auto max_int = std::numeric_limits<int>::max();
+  nbv::Config config;
+  config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
+  config.sensor = parse_depth_camera(args, "nbv");
+  std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
+  config.top = int(args.integer("top", config.top, 1, max_int));
+  config.valid_poses = int(args.integer("poses", config.valid_poses, 1, max_int));
+  config.orientations_per_cell = int(args.integer("orientations", config.orientations_per_cell, 1, 10000));
+  config.jitter_deg = args.number("jitter", config.jitter_deg, 0.0, 90.0);
+  config.min_separation_m = args.number("separation", config.min_separation_m, 0.0, 10.0);
+  config.clearance_m = args.number("clearance", config.clearance_m, 0.0, 2.0);
+  config.refine_poses = int(args.integer("refine", config.refine_poses, 0, max_int));
+  if (args.has("refine-step")) {
+    const std::string text = args.get("refine-step");
+    const bool with_max = text.find(',') != std::string::npos;
+    const std::vector<double> v = parse_double_list(text, "--refine-step", with_max ? 2 : 1);
+    config.refine_step_m = v[0];
+    if (with_max) config.refine_max_m = v[1];
+    if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
+      throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
+  }
+  config.polish_poses = int(args.integer("polish", config.polish_poses, 0, max_int));
+  config.climb_rounds = int(args.integer("climb", config.climb_rounds, 0, 100));
+  config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
+  config.count_near_void_cells = !args.has("far-voids-only");
+  config.view_bounds_m = parse_bounds(args, "view-bounds");
+  config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  config.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  parse_accumulation(args, config);
+  return config;
+}
+
 }  // namespace
 
 Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, double R,
@@ -242,35 +276,7 @@ Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, d
 int run_nbv(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx nbv: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
-  const auto max_int = std::numeric_limits<int>::max();
-  nbv::Config config;
-  config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
-  config.sensor = parse_depth_camera(args, "nbv");
-  std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
-  config.top = int(args.integer("top", config.top, 1, max_int));
-  config.valid_poses = int(args.integer("poses", config.valid_poses, 1, max_int));
-  config.orientations_per_cell = int(args.integer("orientations", config.orientations_per_cell, 1, 10000));
-  config.jitter_deg = args.number("jitter", config.jitter_deg, 0.0, 90.0);
-  config.min_separation_m = args.number("separation", config.min_separation_m, 0.0, 10.0);
-  config.clearance_m = args.number("clearance", config.clearance_m, 0.0, 2.0);
-  config.refine_poses = int(args.integer("refine", config.refine_poses, 0, max_int));
-  if (args.has("refine-step")) {
-    const std::string text = args.get("refine-step");
-    const bool with_max = text.find(',') != std::string::npos;
-    const std::vector<double> v = parse_double_list(text, "--refine-step", with_max ? 2 : 1);
-    config.refine_step_m = v[0];
-    if (with_max) config.refine_max_m = v[1];
-    if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
-      throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
-  }
-  config.polish_poses = int(args.integer("polish", config.polish_poses, 0, max_int));
-  config.climb_rounds = int(args.integer("climb", config.climb_rounds, 0, 100));
-  config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
-  config.count_near_void_cells = !args.has("far-voids-only");
-  config.view_bounds_m = parse_bounds(args, "view-bounds");
-  config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
-  config.threads = unsigned(args.integer("threads", 0, 0, 1024));
-  parse_accumulation(args, config);
+  nbv::Config config = parse_search_options(args);
   const auto bounds = parse_bounds(args);
   voids::ClusterConfig cluster_config;
   cluster_config.min_fit_score = args.number("min-fit-score", cluster_config.min_fit_score, 0.0, 1.0, true);

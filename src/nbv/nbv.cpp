@@ -53,10 +53,11 @@ std::vector<std::string> Config::validate() const {
 
 namespace detail {
 
-// The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
-// util(c) until N valid poses, c* = argmax U (Eq. 3).
-Result select_frontier_void(Search& s, Result result) {
-  auto t0 = Clock::now();
+namespace {
+
+/// Algorithm 1 over the search's grid, with the loop's hidden void cells left out of u_i.
+utility::Field accumulate_field(const Search& s, Result& result) {
+  const auto t0 = Clock::now();
   utility::Config utility_config;
   if (s.config.progress)
     utility_config.progress = [&](std::size_t done, std::size_t total) {
@@ -73,17 +74,17 @@ Result select_frontier_void(Search& s, Result result) {
   // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
   const std::optional<frontier_voids::Analysis> visible =
       s.config.hidden_void_cells.empty() ? std::nullopt : std::optional(s.visible_utility());
-  const utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
+  utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
   result.utility_vectors = field.vectors;
   result.exact_utility_vectors = field.exact_vectors;
   result.timing.accumulation_s = seconds_since(t0);
+  return field;
+}
 
-  t0 = Clock::now();
-  Pruning& pruning = result.pruning;
-  const std::vector<std::size_t> candidates = s.prune(field.util_m3, result);
-  result.timing.pruning_s = seconds_since(t0);
-
-  t0 = Clock::now();
+/// Orientations at the candidate cells in utility order, aimed at the voids whose utility
+/// reached each cell, until N valid poses.
+std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, const std::vector<std::size_t>& candidates,
+                               Pruning& pruning) {
   std::mt19937_64 rng(s.config.seed);
   const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
   std::vector<Pose> poses;
@@ -115,6 +116,23 @@ Result select_frontier_void(Search& s, Result result) {
     if (poses.size() > before) used.push_back(p);
   }
   pruning.valid_poses = poses.size();
+  return poses;
+}
+
+}  // namespace
+
+// The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
+// util(c) until N valid poses, c* = argmax U (Eq. 3).
+Result select_frontier_void(Search& s, Result result) {
+  const utility::Field field = accumulate_field(s, result);
+
+  auto t0 = Clock::now();
+  Pruning& pruning = result.pruning;
+  const std::vector<std::size_t> candidates = s.prune(field.util_m3, result);
+  result.timing.pruning_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  std::vector<Pose> poses = sample_poses(s, field, candidates, pruning);
   result.timing.sampling_s = seconds_since(t0);
 
   t0 = Clock::now();
