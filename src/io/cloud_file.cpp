@@ -77,11 +77,6 @@ CloudFile read_cloud(const std::string& path) {
   return file;
 }
 
-bool is_legacy_openni_viewpoint(const Eigen::Isometry3d& T) {
-  const Eigen::Matrix3d flip_x = Eigen::Vector3d(1, -1, -1).asDiagonal();
-  return T.translation().norm() < 1e-9 && (T.linear() - flip_x).cwiseAbs().maxCoeff() < 1e-6;
-}
-
 void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
                const Eigen::Isometry3d& T_world_sensor, int width, int height) {
   silence_pcl();

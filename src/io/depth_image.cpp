@@ -8,11 +8,6 @@
 
 namespace fvx::io {
 
-bool is_depth_image_path(const std::string& path) {
-  const std::string ext = lowercase_extension(path);
-  return ext == ".png" || ext == ".pgm" || ext == ".tif" || ext == ".tiff";
-}
-
 DepthImage read_depth_image(const std::string& path) {
   require_readable_file(path);
   cv::Mat image;

@@ -181,13 +181,4 @@ void write_line_plot_png(const std::string& path, const std::string& title, cons
   });
 }
 
-Rgb cluster_color(int id) {
-  // Golden-angle hues: neighbouring ids differ, and the same id always gets the same colour.
-  const double hue = std::fmod(id * 137.508, 360.0);
-  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue / 2.0, 200, 230)), bgr;
-  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
-  const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
-  return {c[2], c[1], c[0]};
-}
-
 }  // namespace fvx::io

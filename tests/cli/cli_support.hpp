@@ -16,10 +16,11 @@ struct RunResult {
   std::string out, err;
 };
 
-/// `fvx <arguments>` in `dir`; arguments are passed through the shell as written.
-inline RunResult run_fvx(const TempDir& dir, const std::string& arguments) {
+/// `fvx <arguments>` in `dir`; arguments are passed through the shell as written, after the
+/// variable assignments in `environment` ("NAME=value ...").
+inline RunResult run_fvx(const TempDir& dir, const std::string& arguments, const std::string& environment = "") {
   const std::string out = dir / ".stdout", err = dir / ".stderr";
-  const std::string command = "cd '" + dir.path().string() + "' && '" FVX_BINARY "' " + arguments +
+  const std::string command = "cd '" + dir.path().string() + "' && " + environment + " '" FVX_BINARY "' " + arguments +
                               " > '" + out + "' 2> '" + err + "' < /dev/null";
   const int raw = std::system(command.c_str());
   RunResult r;

@@ -49,6 +49,30 @@ TEST(Cli, VersionHelpAndUnknownCommands) {
   EXPECT_NE(r.err.find("did you mean --resolution?"), std::string::npos) << r.err;
 }
 
+// PCL and OpenCV live in fvx-heavy.so, loaded on first use: commands on maps run without it,
+// commands on clouds say in one line that it is missing, or that it is not fvx's module.
+TEST(Cli, PclAndOpenCvAreLoadedOnlyByCommandsThatNeedThem) {
+  const TempDir dir;
+  write_wall_scan(dir / "scan.pcd", 0.0);
+  ASSERT_EQ(run_fvx(dir, "integrate -r 0.1 --no-register -o map.ot scan.pcd").status, 0);
+  const std::string missing = "FVX_HEAVY=" + (dir / "nowhere") + "/fvx-heavy.so";
+  for (const std::string command : {"frontiers map.ot", "voids map.ot", "nbv map.ot --no-capmap"}) {
+    const RunResult r = run_fvx(dir, command, missing);
+    EXPECT_EQ(r.status, 0) << command << ": " << r.err;
+  }
+  RunResult r = run_fvx(dir, "integrate -r 0.1 --no-register -o map2.ot scan.pcd", missing);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("cannot find fvx-heavy.so"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("FVX_HEAVY"), std::string::npos) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "map2.ot"));
+  std::ofstream(dir / "fake.so") << "not a shared object\n";
+  r = run_fvx(dir, "integrate -r 0.1 --no-register -o map2.ot scan.pcd", "FVX_HEAVY=" + (dir / "fake.so"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("cannot load"), std::string::npos) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+}
+
 TEST(Cli, IntegrateWritesAMapAndAJsonReport) {
   const TempDir dir;
   write_wall_scan(dir / "a.pcd", 0.0);
