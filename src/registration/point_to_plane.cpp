@@ -1,24 +1,70 @@
 #include "point_to_plane.hpp"
 
+#include <nanoflann.hpp>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 
 namespace fvx::registration {
 
-TargetSurface::TargetSurface(const Cloud::ConstPtr& cloud) : cloud_(cloud) {
-  tree_.setInputCloud(cloud_);
+/// nanoflann's view of the target cloud.
+struct CloudPoints {
+  const Cloud& cloud;
+  std::size_t kdtree_get_point_count() const { return cloud.size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t axis) const { return cloud.points[i].data[axis]; }
+  template <typename Box>
+  bool kdtree_get_bbox(Box&) const { return false; }
+};
+
+/// The nearest point closer than a limit; among equally near ones the lowest index, so that
+/// the result does not depend on the tree's layout.
+class NearestWithin {
+ public:
+  explicit NearestWithin(float limit_sq) : worst_(std::nextafter(limit_sq, HUGE_VALF)) {}
+  std::size_t size() const { return index_ >= 0 ? 1 : 0; }
+  bool full() const { return true; }
+  float worstDist() const { return worst_; }
+  bool addPoint(float distance_sq, std::uint32_t index) {
+    if (distance_sq < worst_ || (distance_sq == worst_ && std::int64_t(index) < index_)) {
+      worst_ = distance_sq;
+      index_ = index;
+    }
+    return true;
+  }
+  int index() const { return int(index_); }
+  float distance_sq() const { return worst_; }
+
+ private:
+  float worst_;
+  std::int64_t index_ = -1;
+};
+
+struct TargetSurface::Tree {
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudPoints>, CloudPoints, 3,
+                                                    std::uint32_t>;
+  CloudPoints points;
+  Index index;
+  explicit Tree(const Cloud& cloud) : points{cloud}, index(3, points, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+};
+
+TargetSurface::TargetSurface(const Cloud::ConstPtr& cloud) : cloud_(cloud), tree_(std::make_unique<Tree>(*cloud)) {
   normals_.assign(cloud_->size(), Eigen::Vector3f::Zero());
   planar_.assign(cloud_->size(), 0);
-  std::vector<int> index;
-  std::vector<float> distance_sq;
+  constexpr std::size_t k = 12;
+  std::array<std::uint32_t, k> index;
+  std::array<float, k> distance_sq;
   for (std::size_t i = 0; i < cloud_->size(); ++i) {
-    if (tree_.nearestKSearch(cloud_->points[i], 12, index, distance_sq) < 6) continue;
+    const std::size_t found = tree_->index.knnSearch(cloud_->points[i].data, k, index.data(), distance_sq.data());
+    if (found < 6) continue;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (int j : index) mean += cloud_->points[std::size_t(j)].getVector3fMap().cast<double>();
-    mean /= double(index.size());
+    for (std::size_t j = 0; j < found; ++j) mean += cloud_->points[index[j]].getVector3fMap().cast<double>();
+    mean /= double(found);
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (int j : index) {
-      const Eigen::Vector3d d = cloud_->points[std::size_t(j)].getVector3fMap().cast<double>() - mean;
+    for (std::size_t j = 0; j < found; ++j) {
+      const Eigen::Vector3d d = cloud_->points[index[j]].getVector3fMap().cast<double>() - mean;
       covariance += d * d.transpose();
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);
@@ -27,12 +73,14 @@ TargetSurface::TargetSurface(const Cloud::ConstPtr& cloud) : cloud_(cloud) {
   }
 }
 
+TargetSurface::~TargetSurface() = default;
+
 int TargetSurface::nearest(const Eigen::Vector3f& q, float limit_sq, float& distance_sq) const {
-  std::vector<int> index(1);
-  std::vector<float> d(1);
-  if (tree_.nearestKSearch(pcl::PointXYZ(q.x(), q.y(), q.z()), 1, index, d) != 1 || d[0] > limit_sq) return -1;
-  distance_sq = d[0];
-  return index[0];
+  NearestWithin result(limit_sq);
+  tree_->index.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  if (result.index() < 0) return -1;
+  distance_sq = result.distance_sq();
+  return result.index();
 }
 
 namespace {
