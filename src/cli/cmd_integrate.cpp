@@ -11,6 +11,7 @@
 #include "fvx/core/pose.hpp"
 #include "fvx/map/occupancy_map.hpp"
 #include "fvx/registration/registration.hpp"
+#include "fvx/registration/target_cloud.hpp"
 #include "fvx/scan/load.hpp"
 #include "common_options.hpp"
 #include "report.hpp"
@@ -223,8 +224,8 @@ int run_integrate(const Args& args) {
   // The accumulated cloud that scans are registered to: the points of the scans integrated
   // so far (downsampled), and the occupied cell centres of a map loaded with --map. Cell
   // centres shift surfaces by up to half a cell, so scan points are preferred where known.
-  std::vector<Eigen::Vector3f> registration_target;
-  if (o.do_register && !o.map_path.empty()) registration_target = map.occupied_centers();
+  registration::TargetCloud registration_target(o.reg.voxel_m / 2);
+  if (o.do_register && !o.map_path.empty()) registration_target.add(map.occupied_centers());
 
   Progress progress(o.progress);
   Json scans_json = Json::array();
@@ -251,7 +252,7 @@ int run_integrate(const Args& args) {
     const auto t_reg = std::chrono::steady_clock::now();
     if (o.do_register && !registration_target.empty()) {
       const registration::Result r =
-          registration::align(s.points_sensor, s.T_world_sensor, registration_target, o.reg);
+          registration::align(s.points_sensor, s.T_world_sensor, registration_target.points(), o.reg);
       entry["registration"] = registration_json(r);
       if (r.converged)
         s.T_world_sensor = r.T_world_sensor;
@@ -272,9 +273,7 @@ int run_integrate(const Args& args) {
     if (o.do_register) {
       // Kept at half the registration voxel: sampled at the full voxel and resampled by
       // registration, surfaces moved by 2 cm on the box-room sample (0 mm at half).
-      const std::vector<Eigen::Vector3d> sample =
-          o.reg.voxel_m > 0 ? scan::voxel_downsample(s.points_sensor, o.reg.voxel_m / 2) : s.points_sensor;
-      for (const auto& p : sample) registration_target.push_back((s.T_world_sensor * p).cast<float>());
+      registration_target.add(s.T_world_sensor, s.points_sensor);
     }
     if (o.timing)
       entry["timing_s"] = {{"load", load_s}, {"registration", reg_s}, {"integration", seconds_since(t_int)}};

@@ -41,7 +41,7 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
   // Step 2: registration to the points integrated so far.
   auto t0 = Clock::now();
   if (config.register_scans && !state.registration_target.empty() && r.filtered.kept > 0) {
-    r.registration = registration::align(scan.points_sensor, scan.T_world_sensor, state.registration_target,
+    r.registration = registration::align(scan.points_sensor, scan.T_world_sensor, state.registration_target.points(),
                                          config.registration);
     if (r.registration->converged) scan.T_world_sensor = r.registration->T_world_sensor;
   }
@@ -56,10 +56,9 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
   r.changed_cells = integration.changes.size();
   if (config.register_scans) {
     // Half the registration voxel keeps surfaces where they are (see fvx integrate).
-    const auto sample = config.registration.voxel_m > 0
-                            ? scan::voxel_downsample(scan.points_sensor, config.registration.voxel_m / 2)
-                            : scan.points_sensor;
-    for (const auto& p : sample) state.registration_target.push_back((scan.T_world_sensor * p).cast<float>());
+    if (state.registration_target.empty())
+      state.registration_target = registration::TargetCloud(config.registration.voxel_m / 2);
+    state.registration_target.add(scan.T_world_sensor, scan.points_sensor);
   }
   if (expected_void_cells) {
     std::vector<map::VoxelKey> hidden;

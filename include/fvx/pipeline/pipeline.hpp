@@ -14,6 +14,7 @@
 #include "fvx/map/occupancy_map.hpp"
 #include "fvx/nbv/nbv.hpp"
 #include "fvx/registration/registration.hpp"
+#include "fvx/registration/target_cloud.hpp"
 #include "fvx/scan/scan.hpp"
 #include "fvx/voids/voids.hpp"
 
@@ -46,7 +47,8 @@ struct State {
   map::OccupancyMap map;
   frontiers::FrontierSet frontier_set;
   voids::VoidSet void_set;
-  std::vector<Eigen::Vector3f> registration_target;  ///< world frame, downsampled scan points
+  /// The scans integrated so far, one point per cell of half the registration voxel.
+  registration::TargetCloud registration_target;
   /// Void cells a scan was expected to reveal (taken at a chosen view) that stayed unknown:
   /// hidden from there, they leave U (nbv::Config::hidden_void_cells). Key order.
   std::vector<map::VoxelKey> hidden_void_cells;
