@@ -1,6 +1,6 @@
 #include "point_to_plane.hpp"
 
-#include <nanoflann.hpp>
+#include "nearest.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -10,44 +10,10 @@
 
 namespace fvx::registration {
 
-/// nanoflann's view of the target cloud.
-struct CloudPoints {
-  const Cloud& cloud;
-  std::size_t kdtree_get_point_count() const { return cloud.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t axis) const { return cloud.points[i].data[axis]; }
-  template <typename Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-
-/// The nearest point closer than a limit; among equally near ones the lowest index, so that
-/// the result does not depend on the tree's layout.
-class NearestWithin {
- public:
-  explicit NearestWithin(float limit_sq) : worst_(std::nextafter(limit_sq, HUGE_VALF)) {}
-  std::size_t size() const { return index_ >= 0 ? 1 : 0; }
-  bool full() const { return true; }
-  float worstDist() const { return worst_; }
-  bool addPoint(float distance_sq, std::uint32_t index) {
-    if (distance_sq < worst_ || (distance_sq == worst_ && std::int64_t(index) < index_)) {
-      worst_ = distance_sq;
-      index_ = index;
-    }
-    return true;
-  }
-  int index() const { return int(index_); }
-  float distance_sq() const { return worst_; }
-
- private:
-  float worst_;
-  std::int64_t index_ = -1;
-};
-
 struct TargetSurface::Tree {
-  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudPoints>, CloudPoints, 3,
-                                                    std::uint32_t>;
   CloudPoints points;
-  Index index;
-  explicit Tree(const Cloud& cloud) : points{cloud}, index(3, points, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+  PointTree index;
+  explicit Tree(const Cloud& cloud) : points{&cloud}, index(3, points, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
 };
 
 TargetSurface::TargetSurface(const Cloud::ConstPtr& cloud) : cloud_(cloud), tree_(std::make_unique<Tree>(*cloud)) {

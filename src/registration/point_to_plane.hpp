@@ -18,8 +18,7 @@ namespace fvx::registration {
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 /// Target points with their local planes (PCA of the 12 nearest target points). Neighbours
-/// come from a nanoflann k-d tree: PCL's FLANN tree opened an OpenMP region for every
-/// single-point query, which took 80 % of a 2.5 cm Kinect frame's 15 s registration.
+/// come from a nanoflann k-d tree (nearest.hpp says why).
 class TargetSurface {
  public:
   explicit TargetSurface(const Cloud::ConstPtr& cloud);

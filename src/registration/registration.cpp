@@ -2,7 +2,6 @@
 
 #include <pcl/console/print.h>
 #include <pcl/filters/voxel_grid.h>
-#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/gicp.h>
 #include <pcl/registration/icp.h>
@@ -16,6 +15,7 @@
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/registration/observability.hpp"
+#include "nearest.hpp"
 #include "point_to_plane.hpp"
 
 namespace fvx::registration {
@@ -62,12 +62,16 @@ bool coarse_pass(const Config& config, const Cloud::Ptr& source, const Cloud::Pt
                  Eigen::Matrix4f& T_inout, int& iterations) {
   if (config.method == Method::Gicp) {
     CountingRegistration<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
+    gicp.setSearchMethodTarget(std::make_shared<NanoflannSearch>());
+    gicp.setSearchMethodSource(std::make_shared<NanoflannSearch>());
     // GICP compares each matrix entry's change with the epsilons: metres and radians.
     gicp.setTransformationEpsilon(config.translation_epsilon_m);
     gicp.setRotationEpsilon(config.rotation_epsilon_rad);
     return run_pass(gicp, config, config.max_correspondence_m, source, target, T_inout, iterations);
   }
   CountingRegistration<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
+  icp.setSearchMethodTarget(std::make_shared<NanoflannSearch>());
+  icp.setSearchMethodSource(std::make_shared<NanoflannSearch>());
   // ICP's criteria compare the *squared* translation step and the cosine of the rotation
   // step; with the metre value it stopped after two iterations, 0.8° off.
   icp.setTransformationEpsilon(config.translation_epsilon_m * config.translation_epsilon_m);
