@@ -39,16 +39,6 @@ DenseGrid::DenseGrid(const OccupancyMap& map, const Eigen::AlignedBox3d& bounds_
   }
 }
 
-VoxelKey DenseGrid::key(std::size_t i) const {
-  const std::size_t nx = std::size_t(size_.x()), ny = std::size_t(size_.y());
-  return {std::uint16_t(min_.x + i % nx), std::uint16_t(min_.y + i / nx % ny), std::uint16_t(min_.z + i / (nx * ny))};
-}
-
-Eigen::Vector3d DenseGrid::center_of(const VoxelKey& k) const {
-  return {(double(k.x) - 32768 + 0.5) * resolution_m_, (double(k.y) - 32768 + 0.5) * resolution_m_,
-          (double(k.z) - 32768 + 0.5) * resolution_m_};
-}
-
 namespace {
 
 /// One pass of the 1-D squared distance transform (lower envelope of parabolas): f holds

@@ -31,11 +31,19 @@ class DenseGrid {
     return (std::size_t(k.z - min_.z) * std::size_t(size_.y()) + std::size_t(k.y - min_.y)) * std::size_t(size_.x()) +
            std::size_t(k.x - min_.x);
   }
-  VoxelKey key(std::size_t index) const;
+  /// Inline: the field-of-view scorer and Algorithm 1 ask it for cells along every ray.
+  VoxelKey key(std::size_t index) const {
+    const std::size_t nx = std::size_t(size_.x()), ny = std::size_t(size_.y());
+    return {std::uint16_t(min_.x + index % nx), std::uint16_t(min_.y + index / nx % ny),
+            std::uint16_t(min_.z + index / (nx * ny))};
+  }
   /// Precondition: contains(k).
   VoxelState state(const VoxelKey& k) const { return VoxelState(states_[index(k)]); }
   VoxelState state_at(std::size_t index) const { return VoxelState(states_[index]); }
-  Eigen::Vector3d center_of(const VoxelKey& k) const;
+  Eigen::Vector3d center_of(const VoxelKey& k) const {
+    return {(double(k.x) - 32768 + 0.5) * resolution_m_, (double(k.y) - 32768 + 0.5) * resolution_m_,
+            (double(k.z) - 32768 + 0.5) * resolution_m_};
+  }
 
   /// Walks the cells along a ray from `origin_m` (Amanatides–Woo, the same stepping as
   /// OccupancyMap::cast_ray), calling visit(index, state) for each cell from the origin's
