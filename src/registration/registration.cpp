@@ -79,6 +79,79 @@ bool coarse_pass(const Config& config, const Cloud::Ptr& source, const Cloud::Pt
   return run_pass(icp, config, config.max_correspondence_m, source, target, T_inout, iterations);
 }
 
+/// The scan (sensor frame) and the target cropped to the prior-placed scan's bounding box grown
+/// by max_correspondence_m, in the local frame (world axes, origin at the prior position).
+std::pair<Cloud::Ptr, Cloud::Ptr> local_clouds(const std::vector<Eigen::Vector3d>& points_sensor,
+                                               const Eigen::Isometry3d& T_local_sensor_prior,
+                                               const std::vector<Eigen::Vector3f>& target_world,
+                                               const Eigen::Vector3d& origin_world, const Config& config) {
+  Cloud::Ptr source(new Cloud);
+  Eigen::AlignedBox3f box_local;
+  for (const auto& p : points_sensor) {
+    if (!p.allFinite()) continue;
+    source->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
+    box_local.extend((T_local_sensor_prior * p).cast<float>());
+  }
+  Cloud::Ptr target(new Cloud);
+  const float margin = float(config.max_correspondence_m);
+  box_local.min().array() -= margin;
+  box_local.max().array() += margin;
+  for (const auto& q : target_world) {
+    const Eigen::Vector3f local = (q.cast<double>() - origin_world).cast<float>();
+    if (box_local.contains(local)) target->push_back(pcl::PointXYZ(local.x(), local.y(), local.z()));
+  }
+  return {source, target};
+}
+
+/// The fine pass's settings; its length scale of observability is the median range of the
+/// scan's points.
+FineConfig fine_config(const Cloud& source_fine, const Config& config) {
+  std::vector<float> ranges;
+  for (const auto& p : source_fine.points) ranges.push_back(p.getVector3fMap().norm());
+  std::nth_element(ranges.begin(), ranges.begin() + long(ranges.size() / 2), ranges.end());
+  const double length_scale_m = std::max(0.5, double(ranges[ranges.size() / 2]));
+  return FineConfig{float(config.fine_correspondence_m), config.robust_scale_m, config.max_iterations,
+                    config.translation_epsilon_m, config.rotation_epsilon_rad, config.min_observability,
+                    length_scale_m};
+}
+
+/// Fitness against the fine target, the same measure for both methods: fills
+/// result.inlier_fraction and fitness_rmse_m, returns the inlier count.
+std::size_t measure_fitness(const Cloud& source_fine, const TargetSurface& surface, const Eigen::Matrix4f& T_local_sensor,
+                            const Config& config, Result& result) {
+  double sum_sq = 0.0;
+  std::size_t inliers = 0;
+  const float limit_sq = float(config.fine_correspondence_m * config.fine_correspondence_m);
+  for (const auto& p : source_fine.points) {
+    const Eigen::Vector3f q = (T_local_sensor * Eigen::Vector4f(p.x, p.y, p.z, 1.0f)).head<3>();
+    float distance_sq = 0;
+    if (surface.nearest(q, limit_sq, distance_sq) >= 0) {
+      sum_sq += distance_sq;
+      ++inliers;
+    }
+  }
+  result.inlier_fraction = double(inliers) / double(source_fine.size());
+  result.fitness_rmse_m = inliers ? std::sqrt(sum_sq / double(inliers)) : 0.0;
+  return inliers;
+}
+
+/// Reports the directions the geometry does not constrain at the result (float solver pose
+/// T_local_sensor) and keeps the prior along them (observability.hpp); the fine pass already
+/// did not move along weak ones. Returns the refined pose so constrained, local frame.
+Eigen::Isometry3d keep_prior_along_weak_directions(const Cloud& source_fine, const TargetSurface& surface,
+                                                   const Eigen::Matrix4f& T_local_sensor,
+                                                   const Eigen::Isometry3d& T_local_sensor_prior,
+                                                   const Eigen::Isometry3d& T_local_refined, const Config& config,
+                                                   Result& result) {
+  double observed_length_m = 1.0;
+  const auto planes = plane_constraints(source_fine, surface, T_local_sensor, float(config.fine_correspondence_m),
+                                        observed_length_m);
+  const Observability observability = analyse_observability(planes, observed_length_m, config.min_observability);
+  for (int i = 0; i < observability.weak_count; ++i)
+    result.weak_directions.push_back(describe_direction(observability, i));
+  return constrain_correction(T_local_sensor_prior, T_local_refined, observability);
+}
+
 }  // namespace
 
 Result align(const std::vector<Eigen::Vector3d>& points_sensor,
@@ -94,22 +167,7 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
   Eigen::Isometry3d T_local_sensor_prior = T_world_sensor_prior;
   T_local_sensor_prior.translation().setZero();
 
-  Cloud::Ptr source(new Cloud);
-  Eigen::AlignedBox3f box_local;
-  for (const auto& p : points_sensor) {
-    if (!p.allFinite()) continue;
-    source->push_back(pcl::PointXYZ(float(p.x()), float(p.y()), float(p.z())));
-    box_local.extend((T_local_sensor_prior * p).cast<float>());
-  }
-
-  Cloud::Ptr target(new Cloud);
-  const float margin = float(config.max_correspondence_m);
-  box_local.min().array() -= margin;
-  box_local.max().array() += margin;
-  for (const auto& q : target_world) {
-    const Eigen::Vector3f local = (q.cast<double>() - origin_world).cast<float>();
-    if (box_local.contains(local)) target->push_back(pcl::PointXYZ(local.x(), local.y(), local.z()));
-  }
+  const auto [source, target] = local_clouds(points_sensor, T_local_sensor_prior, target_world, origin_world, config);
 
   const Cloud::Ptr source_coarse = downsample(source, config.voxel_m), target_coarse = downsample(target, config.voxel_m);
   const Cloud::Ptr source_fine = downsample(source, config.fine_voxel_m), target_fine = downsample(target, config.fine_voxel_m);
@@ -129,14 +187,7 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
   Eigen::Matrix4f T_coarse = T_prior_f;
   const bool coarse_stopped = coarse_pass(config, source_coarse, target_coarse, T_coarse, result.iterations);
   const TargetSurface surface(target_fine);
-  // The length scale of observability: the median range of the scan's points.
-  std::vector<float> ranges;
-  for (const auto& p : source_fine->points) ranges.push_back(p.getVector3fMap().norm());
-  std::nth_element(ranges.begin(), ranges.begin() + long(ranges.size() / 2), ranges.end());
-  const double length_scale_m = std::max(0.5, double(ranges[ranges.size() / 2]));
-  const FineConfig fine{float(config.fine_correspondence_m), config.robust_scale_m, config.max_iterations,
-                        config.translation_epsilon_m, config.rotation_epsilon_rad, config.min_observability,
-                        length_scale_m};
+  const FineConfig fine = fine_config(*source_fine, config);
   const FineFit from_prior = refine_point_to_plane(*source_fine, surface, T_prior_f, fine);
   const FineFit from_coarse = refine_point_to_plane(*source_fine, surface, T_coarse, fine);
   const auto [cost_prior, cost_coarse] =
@@ -151,20 +202,7 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
   const Eigen::Matrix4f T_local_sensor = best.T_local_sensor;
   const bool stopped = best.converged && (prior_wins || coarse_stopped);
 
-  // Fitness against the fine target, the same measure for both methods.
-  double sum_sq = 0.0;
-  std::size_t inliers = 0;
-  const float limit_sq = float(config.fine_correspondence_m * config.fine_correspondence_m);
-  for (const auto& p : source_fine->points) {
-    const Eigen::Vector3f q = (T_local_sensor * Eigen::Vector4f(p.x, p.y, p.z, 1.0f)).head<3>();
-    float distance_sq = 0;
-    if (surface.nearest(q, limit_sq, distance_sq) >= 0) {
-      sum_sq += distance_sq;
-      ++inliers;
-    }
-  }
-  result.inlier_fraction = double(inliers) / double(source_fine->size());
-  result.fitness_rmse_m = inliers ? std::sqrt(sum_sq / double(inliers)) : 0.0;
+  const std::size_t inliers = measure_fitness(*source_fine, surface, T_local_sensor, config, result);
 
   Eigen::Isometry3d T_world_sensor(T_local_sensor.cast<double>());
   T_world_sensor.pretranslate(origin_world);
@@ -182,17 +220,10 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
     result.problem = "no source point lies within the correspondence limit of the target";
     return result;
   }
-  // Report the directions the geometry does not constrain at the result, and keep the prior
-  // along them (observability.hpp); the fine pass already did not move along weak ones.
-  double observed_length_m = 1.0;
-  const auto planes = plane_constraints(*source_fine, surface, T_local_sensor, float(config.fine_correspondence_m),
-                                        observed_length_m);
-  const Observability observability = analyse_observability(planes, observed_length_m, config.min_observability);
-  for (int i = 0; i < observability.weak_count; ++i)
-    result.weak_directions.push_back(describe_direction(observability, i));
   Eigen::Isometry3d T_local_refined = T_world_sensor;
   T_local_refined.translation() -= origin_world;
-  T_world_sensor = constrain_correction(T_local_sensor_prior, T_local_refined, observability);
+  T_world_sensor = keep_prior_along_weak_directions(*source_fine, surface, T_local_sensor, T_local_sensor_prior,
+                                                    T_local_refined, config, result);
   T_world_sensor.pretranslate(origin_world);
 
   result.converged = true;
