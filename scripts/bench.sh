@@ -21,6 +21,9 @@
 #    of the whole fvx replay command (files read, --search-every 0);
 #  - next best view at scale: the whole fvx nbv on the real slambook and geb079 maps, sampled
 #    against exact accumulation, seeds 1-4 (scripts/bench-nbv-scale.sh; FVX_REAL_DATA);
+#  - replay with a search after every view: the whole fvx replay on the 211 Redwood frames and
+#    the five slambook frames at 2.5 cm, frames/s and peak memory (scripts/bench-replay.sh;
+#    FVX_BASELINE=/path/to/fvx adds another binary in the same run; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
@@ -47,6 +50,7 @@ else
 fi
 echo "== next best view" && "$build/tests/bench/bench_nbv" data/arms/fvx-arm.fcm 5
 echo "== next best view at scale" && FVX_REAL_DATA="$data" scripts/bench-nbv-scale.sh
+echo "== replay with a search after every view" && FVX_REAL_DATA="$data" scripts/bench-replay.sh
 echo "== explore: time per stage and view (paper replicas, 2.5 cm, fvx arm at (0.2, 0, 0))"
 bench_out="$(mktemp -d)"
 for scene in paper-setting-1 paper-setting-2; do

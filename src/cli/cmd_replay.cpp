@@ -346,7 +346,11 @@ int run_replay(const Args& args) {
   std::vector<Row> rows;  // every replayed view; the reported ones are view + 1 >= from
   std::string failure;
   try {
-    session::replay(scans, arm_inputs.reach, config, [&](const session::ReplayView& v, const pipeline::State& state) {
+    // Each view's map is written while its search runs (the next scan changes the map).
+    const auto save_map = [&](int view, const pipeline::State& state) {
+      if (view + 1 >= from) state.map.save((dir / "maps" / view_file_name(view, ".ot")).string());
+    };
+    session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
       const pipeline::StepResult& step = v.step;
       if (!rows.empty()) {
         rows.back().revealed = v.revealed_void_cells;
@@ -369,7 +373,6 @@ int run_replay(const Args& args) {
       row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
       rows.push_back(row);
       if (v.view + 1 >= from) {
-        state.map.save((dir / "maps" / view_file_name(v.view, ".ot")).string());
         Json report = new_report("replay");
         report["inputs"] = {{"source", source_json}, {"view", v.view + 1}, {"scan", v.name}};
         Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);

@@ -7,7 +7,7 @@
 
 namespace fvx::map {
 
-DenseGrid::DenseGrid(const OccupancyMap& map, const Eigen::AlignedBox3d& bounds_m) : resolution_m_(map.resolution_m()) {
+DenseGrid::DenseGrid(const OccupancyMap& map, const Eigen::AlignedBox3d& bounds_m) : resolution_m_(map.resolution_m()), inverse_resolution_(1.0 / map.resolution_m()) {
   const double R = resolution_m_;
   if (bounds_m.isEmpty() || !bounds_m.min().allFinite() || !bounds_m.max().allFinite()) return;  // an empty grid
   int lo[3], hi[3];

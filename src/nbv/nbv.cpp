@@ -158,40 +158,70 @@ Result select_frontier_void(Search& s, Result result) {
 
 }  // namespace detail
 
-Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
-              const Config& config) {
-  const auto problems = config.validate();
-  if (!problems.empty()) throw UsageError("nbv: " + problems.front());
-  if (reach && !reach->capmap) throw UsageError("nbv: a reach without a capability map");
-  if (config.strategy == Strategy::Exhaustive && !reach)
-    throw UsageError("strategy exhaustive enumerates the capability map's voxels and directions: give one");
-  const auto start = detail::Clock::now();
+struct PreparedSearch::State {
+  detail::Clock::time_point start;
+  std::optional<Reach> reach;  // the search refers to these two
+  Config config;
   Result result;
+  std::unique_ptr<detail::Search> search;  // empty: result says why there is nothing to search
+  bool ran = false;
+};
+
+PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
+                               std::optional<Reach> reach, Config config)
+    : state_(std::make_unique<State>()) {
+  State& st = *state_;
+  st.start = detail::Clock::now();
+  st.reach = std::move(reach);
+  st.config = std::move(config);
+  const auto problems = st.config.validate();
+  if (!problems.empty()) throw UsageError("nbv: " + problems.front());
+  if (st.reach && !st.reach->capmap) throw UsageError("nbv: a reach without a capability map");
+  if (st.config.strategy == Strategy::Exhaustive && !st.reach)
+    throw UsageError("strategy exhaustive enumerates the capability map's voxels and directions: give one");
   // What the analysis already says: no view can help.
   const bool any_open_void = std::any_of(analysis.frontier_voids.begin(), analysis.frontier_voids.end(),
                                          [](const auto& fv) { return !fv.enclosed(); });
-  if ((config.strategy == Strategy::FrontierVoid || config.strategy == Strategy::Exhaustive) && !any_open_void) {
-    result.reason = analysis.void_cells.empty()
-                        ? "no void cell in the search space: nothing is left to look into"
-                        : "every void is enclosed: no frontier touches one, so no view can see into it";
-    return result;
+  const Strategy strategy = st.config.strategy;
+  if ((strategy == Strategy::FrontierVoid || strategy == Strategy::Exhaustive) && !any_open_void) {
+    st.result.reason = analysis.void_cells.empty()
+                           ? "no void cell in the search space: nothing is left to look into"
+                           : "every void is enclosed: no frontier touches one, so no view can see into it";
+    return;
   }
-  if (config.strategy == Strategy::Frontier && analysis.frontier_clusters.empty()) {
-    result.reason = "no frontier cell in the search space";
-    return result;
+  if (strategy == Strategy::Frontier && analysis.frontier_clusters.empty()) {
+    st.result.reason = "no frontier cell in the search space";
+    return;
   }
-  auto t0 = detail::Clock::now();
-  if (config.progress) config.progress("dense grid and distance transform", 0, 0);
-  detail::Search search(map, analysis, reach, config);
-  result.timing.grid_s = detail::seconds_since(t0);
-  switch (config.strategy) {
-    case Strategy::FrontierVoid: result = detail::select_frontier_void(search, std::move(result)); break;
-    case Strategy::Exhaustive: result = detail::select_exhaustive(search, std::move(result)); break;
-    case Strategy::Frontier: result = detail::select_frontier(search, std::move(result)); break;
-    case Strategy::Random: result = detail::select_random(search, std::move(result)); break;
+  const auto t0 = detail::Clock::now();
+  if (st.config.progress) st.config.progress("dense grid and distance transform", 0, 0);
+  st.search = std::make_unique<detail::Search>(map, analysis, st.reach, st.config);
+  st.result.timing.grid_s = detail::seconds_since(t0);
+}
+
+PreparedSearch::PreparedSearch(PreparedSearch&&) noexcept = default;
+PreparedSearch& PreparedSearch::operator=(PreparedSearch&&) noexcept = default;
+PreparedSearch::~PreparedSearch() = default;
+
+Result PreparedSearch::run() {
+  FVX_ASSERT(state_ && !state_->ran, "PreparedSearch::run: once");
+  State& st = *state_;
+  st.ran = true;
+  if (!st.search) return std::move(st.result);
+  Result result = std::move(st.result);
+  switch (st.config.strategy) {
+    case Strategy::FrontierVoid: result = detail::select_frontier_void(*st.search, std::move(result)); break;
+    case Strategy::Exhaustive: result = detail::select_exhaustive(*st.search, std::move(result)); break;
+    case Strategy::Frontier: result = detail::select_frontier(*st.search, std::move(result)); break;
+    case Strategy::Random: result = detail::select_random(*st.search, std::move(result)); break;
   }
-  result.timing.total_s = detail::seconds_since(start);
+  result.timing.total_s = detail::seconds_since(st.start);
   return result;
+}
+
+Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
+              const Config& config) {
+  return PreparedSearch(map, analysis, reach, config).run();
 }
 
 }  // namespace fvx::nbv

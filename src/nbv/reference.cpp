@@ -23,7 +23,7 @@ std::vector<Sphere> void_spheres(const Search& s) {
   const double half_diagonal = std::sqrt(3.0) * 0.5 * s.grid.resolution_m();
   for (const auto& v : s.a.void_clusters) {
     double r = 0.0;
-    for (const map::VoxelKey& k : v.cells) r = std::max(r, (s.map.center_of(k) - v.mean_m).norm());
+    for (const map::VoxelKey& k : v.cells) r = std::max(r, (s.grid.center_of(k) - v.mean_m).norm());
     spheres.push_back({v.mean_m, r + half_diagonal});
   }
   return spheres;
@@ -60,7 +60,7 @@ Result select_exhaustive(Search& s, Result result) {
   for (const auto& [voxel, bits] : cm.voxels()) {
     ++pruning.utility_cells;
     const Eigen::Vector3d p = T_world_base * cm.center_of(voxel);
-    const auto key = s.map.key_of(p);
+    const auto key = s.grid.cell_of(p);
     if (!key) {
       ++pruning.not_free;
       continue;
@@ -114,25 +114,17 @@ Result select_exhaustive(Search& s, Result result) {
 Result select_frontier(Search& s, Result result) {
   auto t0 = Clock::now();
   if (s.config.progress) s.config.progress("rays in front of the largest frontier cluster", 0, 0);
-  // The largest frontier cluster (ties: the lower id).
-  const frontiers::Cluster* target = nullptr;
-  for (const auto& c : s.a.frontier_clusters)
-    if (!target || c.cells.size() > target->cells.size()) target = &c;
+  const frontiers::Cluster* target = s.frontier_target;
   // A frontier-based viewer stands in the free space in front of the frontier: from each
   // frontier cell a ray goes away from its unknown face-neighbours; cells it passes gain 1.
   core::LargeVector<double> rays_through(s.grid.cell_count(), 0.0);
   core::LargeVector<std::uint8_t> mask(s.grid.cell_count(), 0);
   std::size_t vectors = 0;
-  for (const map::VoxelKey& f : target->cells) {
+  for (std::size_t j = 0; j < target->cells.size(); ++j) {
+    const map::VoxelKey& f = target->cells[j];
     if (!s.grid.contains(f)) continue;
     mask[s.grid.index(f)] = 1;
-    Eigen::Vector3d toward_unknown = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 3; ++a)
-      for (int sign : {-1, 1}) {
-        map::VoxelKey n = f;
-        (a == 0 ? n.x : a == 1 ? n.y : n.z) = std::uint16_t((a == 0 ? f.x : a == 1 ? f.y : f.z) + sign);
-        if (s.map.state(n) == map::VoxelState::Unknown) toward_unknown[a] += sign;
-      }
+    const Eigen::Vector3d& toward_unknown = s.toward_unknown[j];
     if (toward_unknown.norm() < 1e-9) continue;
     ++vectors;
     s.grid.walk(s.grid.center_of(f), -toward_unknown, s.config.sensor.depth_max_m,
@@ -191,7 +183,7 @@ Result select_random(Search& s, Result result) {
     for (const auto& [voxel, bits] : s.reach->capmap->voxels()) {
       ++pruning.utility_cells;
       const Eigen::Vector3d p = s.reach->T_world_base * s.reach->capmap->center_of(voxel);
-      const auto key = s.map.key_of(p);
+      const auto key = s.grid.cell_of(p);
       if (!key) {
         ++pruning.not_free;
         continue;
@@ -232,7 +224,7 @@ Result select_random(Search& s, Result result) {
     Pose pose;
     pose.T_world_sensor.linear() = viewpoints::look_along(d, M_PI * unit(rng));
     pose.T_world_sensor.translation() = p;
-    pose.cell = s.grid.index(*s.map.key_of(p));
+    pose.cell = s.grid.index(*s.grid.cell_of(p));
     ++pruning.cells_tried;
     if (!s.keep_orientation(pose, rng(), pruning)) continue;
     ++pruning.valid_poses;

@@ -32,8 +32,8 @@ std::vector<Pose> stepped_back(const Search& s, const std::vector<Pose>& poses, 
     const Eigen::Isometry3d& T = poses[order[j]].T_world_sensor;
     for (int step = 1; step * s.config.refine_step_m <= s.config.refine_max_m + 1e-9; ++step) {
       const Eigen::Vector3d q = T.translation() - step * s.config.refine_step_m * T.linear().col(2);
-      const auto key = s.map.key_of(q);
-      if (!key || !s.grid.contains(*key)) break;  // beyond the known cells nothing is free
+      const auto key = s.grid.cell_of(q);
+      if (!key) break;  // beyond the known cells nothing is free
       ++pruning.refinement_steps;
       if (!s.keep_position(*key, s.grid.center_of(*key), checks)) continue;
       Pose pose;
@@ -81,8 +81,8 @@ std::vector<Pose> neighbours(const Search& s, const Pose& from, std::size_t from
   Pruning checks;
   auto keep = [&](Pose pose, bool position_changed) {
     if (position_changed) {  // to the centre of the cell there, where the checks hold
-      const auto key = s.map.key_of(pose.T_world_sensor.translation());
-      if (!key || !s.grid.contains(*key) || s.grid.center_of(*key) == p) return;  // off the grid, or the same cell
+      const auto key = s.grid.cell_of(pose.T_world_sensor.translation());
+      if (!key || s.grid.center_of(*key) == p) return;  // off the grid, or the same cell
       pose.T_world_sensor.translation() = s.grid.center_of(*key);
       if (!s.keep_position(*key, pose.T_world_sensor.translation(), checks)) return;
     }

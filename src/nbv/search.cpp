@@ -26,12 +26,27 @@ Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::Alig
   return search_space.merged(view_bounds).intersection(known);
 }
 
+/// Per cell of `cluster`, the sum of the unit steps to its unknown face-neighbours.
+std::vector<Eigen::Vector3d> unknown_sides(const map::OccupancyMap& map, const frontiers::Cluster& cluster) {
+  std::vector<Eigen::Vector3d> sides;
+  for (const map::VoxelKey& f : cluster.cells) {
+    Eigen::Vector3d toward = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a)
+      for (int sign : {-1, 1}) {
+        map::VoxelKey n = f;
+        (a == 0 ? n.x : a == 1 ? n.y : n.z) = std::uint16_t((a == 0 ? f.x : a == 1 ? f.y : f.z) + sign);
+        if (map.state(n) == map::VoxelState::Unknown) toward[a] += sign;
+      }
+    sides.push_back(toward);
+  }
+  return sides;
+}
+
 }  // namespace
 
 Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& analysis,
                const std::optional<Reach>& reach_in, const Config& config_in)
-    : map(map_in),
-      a(analysis),
+    : a(analysis),
       reach(reach_in),
       config(config_in),
       known_m(known_box(map_in)),
@@ -53,6 +68,11 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
                                                         config.sensor.depth_min_m, config.count_near_void_cells);
+  if (config.strategy == Strategy::Frontier) {
+    for (const auto& c : a.frontier_clusters)
+      if (!frontier_target || c.cells.size() > frontier_target->cells.size()) frontier_target = &c;
+    if (frontier_target) toward_unknown = unknown_sides(map_in, *frontier_target);
+  }
 }
 
 core::LargeVector<std::uint8_t> Search::void_mask() const {

@@ -70,7 +70,8 @@ struct Search {
   /// directions, so most raw samples would be refused). Without one: R unchanged.
   Eigen::Matrix3d snap_to_reach(const Eigen::Vector3d& p_world, const Eigen::Matrix3d& R) const;
 
-  const map::OccupancyMap& map;
+  // The map is read in the constructor only (the grid, the distance transform, the frontier
+  // strategy's unknown sides): fvx replay integrates the next scan while a search runs.
   const frontier_voids::Analysis& a;
   const std::optional<Reach>& reach;
   const Config& config;
@@ -82,6 +83,10 @@ struct Search {
   std::vector<Eigen::Vector3d> rays_sensor;
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;
+  /// Strategy Frontier: the largest frontier cluster (ties: the lower id), and per cell of it
+  /// the sum of the unit steps to its unknown face-neighbours (zero: none), read from the map.
+  const frontiers::Cluster* frontier_target = nullptr;
+  std::vector<Eigen::Vector3d> toward_unknown;
 };
 
 /// A pose at p_world with rotation R that serves the same cell as `from` (index from_index).

@@ -28,8 +28,7 @@ std::vector<std::string> Config::validate() const {
   return problems;
 }
 
-StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
-                    const std::vector<map::VoxelKey>* expected_void_cells) {
+StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
   const auto problems = config.validate();
   if (!problems.empty()) throw UsageError("pipeline: " + problems.front());
   StepResult r;
@@ -60,17 +59,6 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
       state.registration_target = registration::TargetCloud(config.registration.voxel_m / 2);
     state.registration_target.add(scan.T_world_sensor, scan.points_sensor);
   }
-  if (expected_void_cells) {
-    std::vector<map::VoxelKey> hidden;
-    for (const map::VoxelKey& k : *expected_void_cells)
-      if (state.map.state(k) == map::VoxelState::Unknown) hidden.push_back(k);
-    r.expected_hidden = hidden.size();
-    r.expected_revealed = expected_void_cells->size() - hidden.size();
-    std::vector<map::VoxelKey> merged;
-    std::set_union(state.hidden_void_cells.begin(), state.hidden_void_cells.end(), hidden.begin(), hidden.end(),
-                   std::back_inserter(merged));
-    state.hidden_void_cells = std::move(merged);
-  }
   r.timing.integration_s = seconds_since(t0);
 
   // §IV-A, §IV-B: frontiers and voids from the change set, then the frontier-voids.
@@ -85,19 +73,41 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
   r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m, config.clusters,
                                        config.min_void_width_cells);
   r.timing.frontiers_voids_s = seconds_since(t0);
-
-  // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).
-  t0 = Clock::now();
-  if (config.search) {
-    nbv::Config search = config.nbv;
-    search.hidden_void_cells = state.hidden_void_cells;
-    r.nbv = nbv::select(state.map, r.analysis, reach, search);
-    r.searched = true;
-  } else {
-    r.nbv.reason = "not searched";
-  }
-  r.timing.search_s = seconds_since(t0);
+  r.nbv.reason = "not searched";
   ++state.steps;
+  return r;
+}
+
+void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_cells, StepResult& r) {
+  std::vector<map::VoxelKey> hidden;
+  for (const map::VoxelKey& k : expected_void_cells)
+    if (state.map.state(k) == map::VoxelState::Unknown) hidden.push_back(k);
+  r.expected_hidden = hidden.size();
+  r.expected_revealed = expected_void_cells.size() - hidden.size();
+  std::vector<map::VoxelKey> merged;
+  std::set_union(state.hidden_void_cells.begin(), state.hidden_void_cells.end(), hidden.begin(), hidden.end(),
+                 std::back_inserter(merged));
+  state.hidden_void_cells = std::move(merged);
+}
+
+nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, const std::optional<nbv::Reach>& reach,
+                                   const Config& config) {
+  nbv::Config search = config.nbv;
+  search.hidden_void_cells = state.hidden_void_cells;
+  return nbv::PreparedSearch(state.map, r.analysis, reach, std::move(search));
+}
+
+StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
+                    const std::vector<map::VoxelKey>* expected_void_cells) {
+  StepResult r = integrate_step(state, std::move(scan), config);
+  if (expected_void_cells) mark_hidden(state, *expected_void_cells, r);
+  // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).
+  if (config.search) {
+    const auto t0 = Clock::now();
+    r.nbv = prepare_search(state, r, reach, config).run();
+    r.searched = true;
+    r.timing.search_s = seconds_since(t0);
+  }
   return r;
 }
 

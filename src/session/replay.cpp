@@ -4,13 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <future>
+#include <memory>
 
 #include "fvx/core/error.hpp"
 
 namespace fvx::session {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double axis_angle_rad(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::acos(std::clamp(a.linear().col(2).dot(b.linear().col(2)), -1.0, 1.0));
@@ -38,8 +43,21 @@ double known_volume_m3(const map::OccupancyMap& map, const Eigen::AlignedBox3d& 
   return volume;
 }
 
+namespace {
+
+/// A view whose search runs on its own thread while the next scan is integrated. The view
+/// sits behind a pointer: the search reads its analysis where it is.
+struct InFlight {
+  std::unique_ptr<ReplayView> out;
+  double prepare_s = 0.0;                          // the grid, on the replay's thread
+  std::future<std::pair<nbv::Result, double>> search;  // and the run, seconds; joined before `out` goes
+};
+
+}  // namespace
+
 void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Reach>& reach, const ReplayConfig& config,
-            const std::function<void(const ReplayView&, const pipeline::State&)>& on_view) {
+            const std::function<void(int, const pipeline::State&)>& on_map,
+            const std::function<void(const ReplayView&)>& on_view) {
   const auto problems = config.validate();
   if (!problems.empty()) throw UsageError("replay: " + problems.front());
   const std::size_t count =
@@ -49,9 +67,30 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
   std::vector<Eigen::Isometry3d> taken;     // the poses the views were taken at
   std::vector<map::VoxelKey> previous_voids;
   std::optional<nbv::View> chosen;          // the previous view's choice
-  // The next scan is read while this one goes through the step: reading and back-projecting
-  // a Kinect frame took 24 ms, on a core that registration and the frontier/void update
-  // leave idle. Its errors surface at its own view, as before.
+  // The search of view i runs while scan i + 1 is registered, integrated and analysed: the
+  // search (Algorithm 1, scoring) spreads over every core, the steps before it over one, and
+  // nothing the search reads is in the map any more (nbv::PreparedSearch). The next scan is
+  // read meanwhile too (24 ms per Kinect frame). Errors surface at their own view, as before.
+  std::optional<InFlight> in_flight;
+  auto finish = [&](InFlight& f) {
+    ReplayView& out = *f.out;
+    if (f.search.valid()) {
+      auto [result, run_s] = f.search.get();
+      out.step.nbv = std::move(result);
+      out.step.searched = true;
+      out.step.timing.search_s = f.prepare_s + run_s;
+    }
+    out.chosen = first_view_not_taken(out.step.nbv.views, taken);
+    if (out.chosen) chosen = out.step.nbv.views[*out.chosen];
+    else chosen.reset();
+    on_view(out);
+  };
+  auto finish_in_flight = [&] {
+    if (!in_flight) return;
+    InFlight f = std::move(*in_flight);
+    in_flight.reset();
+    finish(f);
+  };
   std::future<scan::Scan> next;
   if (count > 0) next = std::async(std::launch::async, scans[0].load);
   for (std::size_t i = 0; i < count; ++i) {
@@ -63,38 +102,56 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
       // nothing); a file without a single point is broken.
       if (scan.points_sensor.empty()) throw Error("the scan holds no points");
     } catch (const std::exception& e) {
+      finish_in_flight();
       throw Error("view " + std::to_string(view) + " (" + scans[i].name + "): " + e.what());
     }
     if (i + 1 < count) next = std::async(std::launch::async, scans[i + 1].load);
-    const Eigen::Isometry3d logged = scans[i].T_world_sensor_true.value_or(scan.T_world_sensor);
-    // The chosen view's cells stay unknown after a scan taken there: hidden, as in explore.
-    // A scan taken elsewhere says nothing about them.
-    const bool at_chosen = chosen && same_view(logged, chosen->T_world_sensor);
-    const std::vector<map::VoxelKey> expected = at_chosen ? chosen->seen_void_cells : std::vector<map::VoxelKey>{};
-
     pipeline::Config step_config = config.pipeline;
     step_config.nbv.seed = config.pipeline.nbv.seed + std::uint64_t(view);
     step_config.search = config.search_every > 0 && (view + 1) % config.search_every == 0;
-    ReplayView out;
-    out.view = view;
-    out.name = scans[i].name;
-    out.at_choice = at_chosen;
-    if (chosen) {
-      out.from_choice_m = (logged.translation() - chosen->T_world_sensor.translation()).norm();
-      out.from_choice_deg = axis_angle_rad(logged, chosen->T_world_sensor) * 180.0 / M_PI;
+    auto out = std::make_unique<ReplayView>();
+    out->view = view;
+    out->name = scans[i].name;
+    // Where the recording says the sensor was: the pose prior, before registration.
+    const Eigen::Isometry3d logged = scans[i].T_world_sensor_true.value_or(scan.T_world_sensor);
+    try {
+      out->step = pipeline::integrate_step(state, std::move(scan), step_config);
+    } catch (...) {
+      finish_in_flight();
+      throw;
     }
-    out.step = pipeline::run_step(state, std::move(scan), reach, step_config, at_chosen ? &expected : nullptr);
-    for (const map::VoxelKey& k : previous_voids) out.revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
-    previous_voids = out.step.analysis.void_cells;
-    taken.push_back(scans[i].T_world_sensor_true.value_or(out.step.T_world_sensor));
+    finish_in_flight();  // the previous view's choice decides what this scan hides
 
-    out.chosen = first_view_not_taken(out.step.nbv.views, taken);
-    if (out.chosen) chosen = out.step.nbv.views[*out.chosen];
-    else chosen.reset();
-    out.known_m3 = known_volume_m3(state.map, out.step.analysis.bounds_m);
-    out.void_m3 = double(out.step.analysis.void_cells.size()) * std::pow(config.pipeline.resolution_m, 3);
-    on_view(out, state);
+    // The chosen view's cells stay unknown after a scan taken there: hidden, as in explore.
+    // A scan taken elsewhere says nothing about them.
+    out->at_choice = chosen && same_view(logged, chosen->T_world_sensor);
+    if (out->at_choice) pipeline::mark_hidden(state, chosen->seen_void_cells, out->step);
+    if (chosen) {
+      out->from_choice_m = (logged.translation() - chosen->T_world_sensor.translation()).norm();
+      out->from_choice_deg = axis_angle_rad(logged, chosen->T_world_sensor) * 180.0 / M_PI;
+    }
+    for (const map::VoxelKey& k : previous_voids) out->revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
+    previous_voids = out->step.analysis.void_cells;
+    taken.push_back(scans[i].T_world_sensor_true.value_or(out->step.T_world_sensor));
+    out->known_m3 = known_volume_m3(state.map, out->step.analysis.bounds_m);
+    out->void_m3 = double(out->step.analysis.void_cells.size()) * std::pow(config.pipeline.resolution_m, 3);
+    on_map(view, state);
+
+    InFlight f;
+    f.out = std::move(out);
+    if (step_config.search) {
+      const auto t0 = Clock::now();
+      auto search = std::make_shared<nbv::PreparedSearch>(pipeline::prepare_search(state, f.out->step, reach, step_config));
+      f.prepare_s = seconds_since(t0);
+      f.search = std::async(std::launch::async, [search] {
+        const auto t1 = Clock::now();
+        nbv::Result result = search->run();
+        return std::make_pair(std::move(result), seconds_since(t1));
+      });
+    }
+    in_flight = std::move(f);
   }
+  finish_in_flight();
 }
 
 }  // namespace fvx::session

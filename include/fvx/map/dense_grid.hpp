@@ -4,7 +4,9 @@
 /// hot loops (utility rays, field-of-view scoring) walk instead of octree searches
 /// (ARCHITECTURE.md §2: a dense-grid DDA walks ~500 M cells/s, octree look-ups 20–30 M/s).
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "fvx/core/large_vector.hpp"
@@ -37,6 +39,21 @@ class DenseGrid {
     return {std::uint16_t(min_.x + index % nx), std::uint16_t(min_.y + index / nx % ny),
             std::uint16_t(min_.z + index / (nx * ny))};
   }
+  /// The key of the grid cell holding p_m (OctoMap's coordToKey rounding, so it equals
+  /// OccupancyMap::key_of), or nothing outside the grid: searches that run while the map
+  /// changes (fvx replay) find cells without reading the map.
+  std::optional<VoxelKey> cell_of(const Eigen::Vector3d& p_m) const {
+    if (!p_m.allFinite()) return std::nullopt;
+    int k[3];
+    for (int a = 0; a < 3; ++a) {
+      const double scaled = std::floor(inverse_resolution_ * p_m[a]);
+      if (!(scaled >= -32768.0 && scaled < 32768.0)) return std::nullopt;
+      k[a] = int(scaled) + 32768;
+    }
+    const VoxelKey key{std::uint16_t(k[0]), std::uint16_t(k[1]), std::uint16_t(k[2])};
+    if (!contains(key)) return std::nullopt;
+    return key;
+  }
   /// Precondition: contains(k).
   VoxelState state(const VoxelKey& k) const { return VoxelState(states_[index(k)]); }
   VoxelState state_at(std::size_t index) const { return VoxelState(states_[index]); }
@@ -66,6 +83,7 @@ class DenseGrid {
 
  private:
   double resolution_m_;
+  double inverse_resolution_;  ///< OctoMap's resolution_factor (1 / resolution), for cell_of
   VoxelKey min_;
   Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
   core::LargeVector<std::uint8_t> states_;

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -175,9 +176,32 @@ struct Result {
   std::string reason;            ///< why `views` is empty; empty otherwise
 };
 
+namespace detail {
+struct Search;
+}
+
+/// A search whose reading of the map is done: the constructor copies what the search needs
+/// (the dense grid, its distance transform, the frontier strategy's unknown sides), so the
+/// map may change while run() goes on — fvx replay integrates the next scan meanwhile.
+/// `analysis` must outlive it; reach and config are copied.
+class PreparedSearch {
+ public:
+  PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, std::optional<Reach> reach,
+                 Config config);
+  PreparedSearch(PreparedSearch&&) noexcept;
+  PreparedSearch& operator=(PreparedSearch&&) noexcept;
+  ~PreparedSearch();
+  /// The search itself (select()); once.
+  Result run();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
 /// Selects the next best views for the map analysed in `analysis` (frontiers, voids and
 /// frontier-voids within the search space). Deterministic for a given seed, on any number
-/// of threads.
+/// of threads. The same as PreparedSearch(map, analysis, reach, config).run().
 Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
               const std::optional<Reach>& reach, const Config& config);
 

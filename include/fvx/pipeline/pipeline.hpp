@@ -72,11 +72,27 @@ struct StepResult {
   Timing timing;
 };
 
+/// Steps 1–6 of run_step (filter, register, integrate, frontiers and voids, frontier-voids):
+/// the result has no search (searched false, nbv empty).
+StepResult integrate_step(State& state, scan::Scan scan, const Config& config);
+
+/// Right after integrate_step: the cells of `expected_void_cells` (the void cells the scan
+/// was expected to reveal, taken at a chosen view) that it left unknown are hidden from then
+/// on (State::hidden_void_cells); counted in r.expected_revealed and r.expected_hidden.
+void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_cells, StepResult& r);
+
+/// Step 7 with what it reads of the map copied (nbv::PreparedSearch), and the hidden void
+/// cells so far: the state may take the next scan while run() goes on. r.analysis must
+/// outlive it.
+nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, const std::optional<nbv::Reach>& reach,
+                                   const Config& config);
+
 /// One step of §IV: `scan` (sensor-frame points and their pose prior) goes into `state`;
 /// returns the pose used, the analysis and the next best views. A scan with no point left
 /// after filtering (a sensor facing a surface nearer than its minimum depth) changes nothing.
 /// `expected_void_cells`: when the scan was taken at a view the search chose, the void cells
 /// it was expected to see (nbv::View::seen_void_cells); those it left unknown are hidden.
+/// integrate_step, mark_hidden, then the search (when config.search), in this order.
 StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
                     const std::vector<map::VoxelKey>* expected_void_cells = nullptr);
 

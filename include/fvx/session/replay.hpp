@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Replay (paper §V, offline): a recorded sequence of scans run through the same step as the
-/// closed loop — register, integrate, frontiers and voids, next best view — one call of
-/// pipeline::run_step() per scan, in order. The sensor went where the recording says, not
+/// closed loop — register, integrate, frontiers and voids, next best view — the same as one
+/// call of pipeline::run_step() per scan, in order. The sensor went where the recording says, not
 /// where the planner would have sent it; each view reports both.
 #include <Eigen/Geometry>
 #include <functional>
@@ -55,11 +55,15 @@ struct ReplayView {
   double void_m3 = 0.0;   ///< void volume (step.analysis.void_cells · R³)
 };
 
-/// Runs the scans in order; `on_view` gets each view and the state right after it. A scan that
-/// fails to load throws Error naming the view and the file (on_view has had every view before
-/// it).
+/// Runs the scans in order. `on_map` gets each view's number and the state right after its
+/// scan is integrated and analysed (the map, before the next scan changes it); `on_view` then
+/// gets the view with its search, after on_map of the view and before on_map of the next
+/// one. The search of view i runs while scan i + 1 is registered, integrated and analysed;
+/// the results are those of one pipeline::run_step() per scan. A scan that fails to load
+/// throws Error naming the view and the file (on_view has had every view before it).
 void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Reach>& reach, const ReplayConfig& config,
-            const std::function<void(const ReplayView&, const pipeline::State&)>& on_view);
+            const std::function<void(int view, const pipeline::State&)>& on_map,
+            const std::function<void(const ReplayView&)>& on_view);
 
 /// The known volume of `map` inside `box`, m³ (leaves clipped to the box).
 double known_volume_m3(const map::OccupancyMap& map, const Eigen::AlignedBox3d& box);

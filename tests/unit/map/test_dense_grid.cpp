@@ -38,6 +38,32 @@ TEST(DenseGrid, StatesEqualTheOctreeCellByCell) {
   EXPECT_GT(known, 1000u);
 }
 
+TEST(DenseGrid, CellOfEqualsTheMapsKeyInsideTheGridAndIsEmptyOutside) {
+  std::mt19937 rng(3);
+  const OccupancyMap map = random_map(rng);
+  const Eigen::AlignedBox3d bounds(Eigen::Vector3d(-1.5, -1.5, -1.2), Eigen::Vector3d(1.6, 1.1, 1.3));
+  const DenseGrid grid(map, bounds);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  std::size_t inside = 0;
+  for (int i = 0; i < 200000; ++i) {
+    // Points on cell faces too (multiples of the resolution), where rounding decides.
+    Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    if (i % 4 == 0) p = (p / 0.1).array().round().matrix() * 0.1;
+    const std::optional<VoxelKey> key = map.key_of(p), cell = grid.cell_of(p);
+    ASSERT_TRUE(key);
+    if (grid.contains(*key)) {
+      ASSERT_TRUE(cell) << p.transpose();
+      ASSERT_EQ(*cell, *key) << p.transpose();
+      ++inside;
+    } else {
+      ASSERT_FALSE(cell) << p.transpose();
+    }
+  }
+  EXPECT_GT(inside, 30000u);
+  EXPECT_FALSE(grid.cell_of(Eigen::Vector3d(std::nan(""), 0, 0)));
+  EXPECT_FALSE(grid.cell_of(Eigen::Vector3d(1e300, 0, 0)));
+}
+
 TEST(DenseGrid, WalksEqualTheOctreeRayCast) {
   std::mt19937 rng(4);
   const OccupancyMap map = random_map(rng);

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The whole `fvx replay` command with a search after every view (the default --search-every 1),
+# as a user runs it on recorded Kinect data, free-flying (--no-capmap), registration on (the
+# default for --scans): wall time, frames per second, seconds per view and peak memory (RSS).
+#   - the 211 Redwood living-room frames at 2.5 cm (redwood-livingroom1-micro);
+#   - the five slambook frames at 2.5 cm, depth < 7 m (slambook-joinmap-5kf).
+# Data from FVX_REAL_DATA (default ../shared/data). FVX_BASELINE=/path/to/another/fvx runs that
+# binary on the same inputs first, in the same run (ratios need both from one run: the machines
+# are noisy), and checks that both wrote the same per-view maps.
+#   scripts/bench-replay.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${FVX_BUILD_DIR:-build}"
+data="${FVX_REAL_DATA:-../shared/data}"
+fvx="$build/src/fvx"
+[ -x "$fvx" ] || { scripts/install-deps.sh && scripts/build.sh >/dev/null; }
+command -v /usr/bin/time >/dev/null || { echo "bench-replay: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+redwood="$data/redwood-livingroom1-micro"
+slambook="$data/slambook-joinmap-5kf"
+declare -A args
+args[redwood]="--scans $redwood/depth/*.png --trajectory $redwood/trajectory_open3d_estimated.log --fx 525 --fy 525 --cx 319.5 --cy 239.5"
+args[slambook]="--scans $slambook/depth/*.pgm --trajectory $slambook/pose.txt --fx 518 --fy 519 --cx 325.5 --cy 253.5 --depth-scale 1000 --depth-max 7"
+binaries=("$fvx")
+[ -n "${FVX_BASELINE:-}" ] && binaries=("$FVX_BASELINE" "$fvx")
+
+printf '| sequence | binary | frames | wall s | frames/s | s per view | peak MiB | same maps as the first |\n'
+printf '|---|---|---|---|---|---|---|---|\n'
+for name in redwood slambook; do
+  dir="$redwood"
+  [ "$name" = slambook ] && dir="$slambook"
+  [ -d "$dir" ] || { echo "bench-replay: $dir not found; set FVX_REAL_DATA" >&2; continue; }
+  n=0
+  for bin in "${binaries[@]}"; do
+    n=$((n + 1))
+    out="$tmp/$name-$n"
+    set -f  # the globs in args go to fvx as they are
+    # shellcheck disable=SC2086
+    /usr/bin/time -f '%e %M' -o "$tmp/time" "$bin" replay ${args[$name]} -r 0.025 --no-capmap -o "$out" \
+      --format csv > "$tmp/table.csv" 2> "$tmp/err" || { echo "bench-replay: $bin failed: $(tail -1 "$tmp/err")" >&2; exit 1; }
+    set +f
+    read -r wall kb < "$tmp/time"
+    frames=$(($(wc -l < "$tmp/table.csv") - 1))
+    same="-"
+    [ "$n" -gt 1 ] && same="$(cd "$out/maps" && sha256sum ./* | (cd "$tmp/$name-1/maps" && sha256sum --quiet -c - >/dev/null 2>&1) && echo yes || echo NO)"
+    awk -v s="$name" -v b="$bin" -v f="$frames" -v w="$wall" -v m="$((kb / 1024))" -v same="$same" \
+      'BEGIN { printf "| %s | %s | %d | %.1f | %.2f | %.3f | %d | %s |\n", s, b, f, w, f / w, w / f, m, same }'
+  done
+done
