@@ -10,8 +10,8 @@
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/map/occupancy_map.hpp"
+#include "fvx/pipeline/pipeline.hpp"
 #include "fvx/registration/registration.hpp"
-#include "fvx/registration/target_cloud.hpp"
 #include "fvx/scan/load.hpp"
 #include "common_options.hpp"
 #include "report.hpp"
@@ -171,19 +171,27 @@ Json registration_json(const registration::Result& r) {
   return j;
 }
 
-Json integration_json(const map::Integration& integration) {
-  std::size_t to_free = 0, to_occupied = 0;
-  for (const auto& c : integration.changes) {
-    to_free += c.after == map::VoxelState::Free;
-    to_occupied += c.after == map::VoxelState::Occupied;
-  }
-  return {{"changed_cells", integration.changes.size()},
-          {"became_free", to_free},
-          {"became_occupied", to_occupied},
-          {"free_updates", integration.free_updates},
-          {"occupied_updates", integration.occupied_updates},
-          {"points_beyond_range", integration.points_beyond_range},
-          {"points_out_of_map", integration.points_out_of_map}};
+Json integration_json(const map::IntegrationCounts& c) {
+  return {{"changed_cells", c.changed_cells},
+          {"became_free", c.became_free},
+          {"became_occupied", c.became_occupied},
+          {"free_updates", c.free_updates},
+          {"occupied_updates", c.occupied_updates},
+          {"points_beyond_range", c.points_beyond_range},
+          {"points_out_of_map", c.points_out_of_map}};
+}
+
+/// Paper §IV steps 1–3 of the pipeline's step: no frontiers, voids or search.
+pipeline::Config step_config(const Options& o, double resolution_m) {
+  pipeline::Config c;
+  c.resolution_m = resolution_m;
+  c.filter = o.filter;
+  c.max_range_m = o.max_range_m;
+  c.register_scans = o.do_register;
+  c.registration = o.reg;
+  c.analyse = false;
+  c.search = false;
+  return c;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -221,11 +229,9 @@ int run_integrate(const Args& args) {
   std::vector<std::string> warnings = plan.warnings;
   report["inputs"]["pose_match"] = scan::to_string(plan.match);
 
-  // The accumulated cloud that scans are registered to: the points of the scans integrated
-  // so far (downsampled), and the occupied cell centres of a map loaded with --map. Cell
-  // centres shift surfaces by up to half a cell, so scan points are preferred where known.
-  registration::TargetCloud registration_target(o.reg.voxel_m / 2);
-  if (o.do_register && !o.map_path.empty()) registration_target.add(map.occupied_centers());
+  // With --map, registration starts from the map's occupied cell centres (pipeline::State).
+  const pipeline::Config config = step_config(o, map.resolution_m());
+  pipeline::State state(std::move(map), config);
 
   Progress progress(o.progress);
   Json scans_json = Json::array();
@@ -235,54 +241,42 @@ int run_integrate(const Args& args) {
                     std::to_string(plan.scans.size()) + " " + source.path);
     const auto t_load = std::chrono::steady_clock::now();
     scan::Scan s = scan::load_scan(source, o.load, warnings);
-    const scan::FilterStats filtered = scan::filter(s, o.filter);
+    const double load_s = seconds_since(t_load);
+    const Eigen::Isometry3d prior = s.T_world_sensor;
+    const scan::PoseSource pose_source = s.pose_source;
+    const pipeline::StepResult r = pipeline::integrate_step(state, std::move(s), config);
+    const scan::FilterStats& filtered = r.filtered;
     if (filtered.input == 0) throw Error(source.path + ": the scan holds no points");
     if (filtered.non_finite == filtered.input)
       throw Error(source.path + ": the scan holds no finite points (all NaN)");
     if (filtered.kept == 0)
       throw Error(source.path + ": no point is left after the depth limits (--depth-min/--depth-max)");
-    const double load_s = seconds_since(t_load);
 
-    Json entry = {{"file", source.path}, {"pose_source", scan::to_string(s.pose_source)}};
+    Json entry = {{"file", source.path}, {"pose_source", scan::to_string(pose_source)}};
     entry["points"] = {{"input", filtered.input}, {"non_finite", filtered.non_finite},
                        {"out_of_depth", filtered.out_of_depth}, {"merged", filtered.merged},
                        {"kept", filtered.kept}};
-    entry["prior"] = pose_json(s.T_world_sensor);
-
-    const auto t_reg = std::chrono::steady_clock::now();
-    if (o.do_register && !registration_target.empty()) {
-      const registration::Result r =
-          registration::align(s.points_sensor, s.T_world_sensor, registration_target.points(), o.reg);
-      entry["registration"] = registration_json(r);
-      if (r.converged)
-        s.T_world_sensor = r.T_world_sensor;
-      else
-        warnings.push_back(source.path + ": registration did not converge (" + r.problem +
+    entry["prior"] = pose_json(prior);
+    if (r.registration) {
+      entry["registration"] = registration_json(*r.registration);
+      if (!r.registration->converged)
+        warnings.push_back(source.path + ": registration did not converge (" + r.registration->problem +
                            "); the scan is integrated at its pose prior");
     } else {
       entry["registration"] = {{"attempted", false},
                                {"reason", o.do_register ? "nothing to register to yet (first scan of an empty map)" : "--no-register"}};
     }
-    const double reg_s = seconds_since(t_reg);
-    entry["T_world_sensor"] = pose_json(s.T_world_sensor);
-
-    const auto t_int = std::chrono::steady_clock::now();
-    const map::Integration integration = map.integrate(
-        scan::to_world(s), s.T_world_sensor.translation().cast<float>(), o.max_range_m);
-    entry["integration"] = integration_json(integration);
-    if (o.do_register) {
-      // Kept at half the registration voxel: sampled at the full voxel and resampled by
-      // registration, surfaces moved by 2 cm on the box-room sample (0 mm at half).
-      registration_target.add(s.T_world_sensor, s.points_sensor);
-    }
+    entry["T_world_sensor"] = pose_json(r.T_world_sensor);
+    entry["integration"] = integration_json(r.integration);
     if (o.timing)
-      entry["timing_s"] = {{"load", load_s}, {"registration", reg_s}, {"integration", seconds_since(t_int)}};
+      entry["timing_s"] = {{"load", load_s}, {"registration", r.timing.registration_s},
+                           {"integration", r.timing.integration_s}};
     scans_json.push_back(entry);
   }
   progress.finish();
 
-  map.save(o.output_path);
-  report["results"] = {{"output", o.output_path}, {"scans", scans_json}, {"map", map_json(map.stats())}};
+  state.map.save(o.output_path);
+  report["results"] = {{"output", o.output_path}, {"scans", scans_json}, {"map", map_json(state.map.stats())}};
   report["warnings"] = warnings;
   write_report(report, o.report_path);
   return 0;

@@ -66,6 +66,20 @@ SensorModel OccupancyMap::sensor_model() const {
   return model;
 }
 
+IntegrationCounts counts(const Integration& integration) {
+  IntegrationCounts c;
+  c.changed_cells = integration.changes.size();
+  for (const Change& change : integration.changes) {
+    c.became_free += change.after == VoxelState::Free;
+    c.became_occupied += change.after == VoxelState::Occupied;
+  }
+  c.points_beyond_range = integration.points_beyond_range;
+  c.points_out_of_map = integration.points_out_of_map;
+  c.free_updates = integration.free_updates;
+  c.occupied_updates = integration.occupied_updates;
+  return c;
+}
+
 std::optional<VoxelKey> OccupancyMap::key_of(const Eigen::Vector3d& p_world) const {
   octomap::OcTreeKey key;
   if (!p_world.allFinite() ||

@@ -19,13 +19,21 @@ std::vector<std::string> Config::validate() const {
   if (!(resolution_m > 0.0 && resolution_m <= 10.0)) problems.push_back("resolution_m must be in (0, 10] m");
   if (bounds_m && (bounds_m->isEmpty() || !bounds_m->min().allFinite() || !bounds_m->max().allFinite()))
     problems.push_back("bounds_m must be a finite, non-empty box");
-  if (!(max_range_m > 0.0)) problems.push_back("max_range_m must be > 0");
+  if (search && !analyse) problems.push_back("search needs analyse (frontiers and voids)");
+  if (max_range_m && !(*max_range_m > 0.0)) problems.push_back("max_range_m must be > 0");
   if (min_void_width_cells < 1 || min_void_width_cells > 16) problems.push_back("min_void_width_cells must be in [1, 16]");
   for (const auto& p : filter.validate()) problems.push_back("filter: " + p);
   if (register_scans)
     for (const auto& p : registration.validate()) problems.push_back("registration: " + p);
   for (const auto& p : nbv.validate()) problems.push_back("nbv: " + p);
   return problems;
+}
+
+State::State(map::OccupancyMap existing, const Config& config) : map(std::move(existing)) {
+  if (config.register_scans) {
+    registration_target = registration::TargetCloud(config.registration.voxel_m / 2);
+    registration_target.add(map.occupied_centers());
+  }
 }
 
 StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
@@ -49,10 +57,10 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
 
   // Step 3: integration; the change set drives the incremental updates.
   t0 = Clock::now();
-  const double range_m = std::isfinite(config.max_range_m) ? config.max_range_m : config.nbv.sensor.depth_max_m;
+  const double range_m = config.max_range_m.value_or(config.nbv.sensor.depth_max_m);
   const map::Integration integration =
       state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m);
-  r.changed_cells = integration.changes.size();
+  r.integration = map::counts(integration);
   if (config.register_scans) {
     // Half the registration voxel keeps surfaces where they are (see fvx integrate).
     if (state.registration_target.empty())
@@ -63,15 +71,19 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
 
   // §IV-A, §IV-B: frontiers and voids from the change set, then the frontier-voids.
   t0 = Clock::now();
-  if (state.steps == 0) {
-    state.frontier_set.rebuild(state.map);
-    state.void_set.rebuild(state.map);
-  } else {
-    state.frontier_set.update(state.map, integration.changes);
-    state.void_set.update(state.map, integration.changes);
+  if (config.analyse) {
+    // A step that did not analyse left the sets behind the map: rebuilt then.
+    if (!state.analysed) {
+      state.frontier_set.rebuild(state.map);
+      state.void_set.rebuild(state.map);
+    } else {
+      state.frontier_set.update(state.map, integration.changes);
+      state.void_set.update(state.map, integration.changes);
+    }
+    r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m,
+                                         config.clusters, config.min_void_width_cells);
   }
-  r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m, config.clusters,
-                                       config.min_void_width_cells);
+  state.analysed = config.analyse;
   r.timing.frontiers_voids_s = seconds_since(t0);
   r.nbv.reason = "not searched";
   ++state.steps;

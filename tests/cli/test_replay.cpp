@@ -255,6 +255,32 @@ TEST(CliReplay, RegistrationUnderPoseNoiseMatchesTheNoiseFreeMap) {
               100 * registered, 100 * unregistered);
 }
 
+// fvx integrate is the pipeline's step without frontiers, voids and search: on the same scans
+// and priors, registered (an explore run with pose noise), it writes the map that fvx replay
+// --search-every 0 holds after the last view, byte for byte.
+TEST(CliReplay, IntegrateAndReplayWithoutSearchWriteTheSameMap) {
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 4 --pose-noise 0.02,2 -o session");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const session::Manifest m = session::read_manifest(dir / "session");
+  std::vector<Eigen::Isometry3d> priors;
+  for (const auto& v : m.views) priors.push_back(v.T_world_sensor_prior);
+  ASSERT_EQ(priors.size(), 4u);
+  write_poses(dir / "priors.txt", priors);
+  const RunResult replayed = run_fvx(dir, "replay --scans 'session/scans/*.pcd' --trajectory priors.txt --no-capmap "
+                                          "--search-every 0 -r 0.025 --depth-min 0.5 --depth-max 4 -o out");
+  ASSERT_EQ(replayed.status, 0) << replayed.err;
+  const RunResult integrated =
+      run_fvx(dir, "integrate session/scans/view000.pcd session/scans/view001.pcd session/scans/view002.pcd "
+                   "session/scans/view003.pcd --trajectory priors.txt -r 0.025 --depth-min 0.5 --depth-max 4 "
+                   "--max-range 4 -o map.ot");
+  ASSERT_EQ(integrated.status, 0) << integrated.err;
+  const json scans = json::parse(integrated.out)["results"]["scans"];
+  ASSERT_EQ(scans.size(), 4u);
+  EXPECT_TRUE(scans[3]["registration"]["attempted"].get<bool>());
+  EXPECT_EQ(slurp(dir / "map.ot"), slurp(dir / "out/maps/view003.ot"));
+}
+
 // A TUM RGB-D folder (depth PNGs at 5000 per metre named by stamp, groundtruth.txt) of the
 // closed box rendered from three poses: the replay finds the poses by stamp and its map
 // holds the box's walls where they are.

@@ -53,6 +53,14 @@ struct Integration {
   std::size_t occupied_updates = 0;    ///< distinct cells updated as occupied (hit)
 };
 
+/// What an integration did, without the change set.
+struct IntegrationCounts {
+  std::size_t changed_cells = 0;       ///< cells whose state changed
+  std::size_t became_free = 0, became_occupied = 0;
+  std::size_t points_beyond_range = 0, points_out_of_map = 0, free_updates = 0, occupied_updates = 0;
+};
+IntegrationCounts counts(const Integration& integration);
+
 /// How a ray cast ended.
 enum class RayOutcome {
   Hit,          ///< reached an occupied cell

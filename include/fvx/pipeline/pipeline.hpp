@@ -24,9 +24,9 @@ struct Config {
   double resolution_m = 0.025;                     ///< map cell edge, metres (the paper: 2.5 cm)
   std::optional<Eigen::AlignedBox3d> bounds_m;     ///< search space S; default: the known cells' box
   scan::FilterConfig filter;                       ///< depth limits and downsampling of each scan
-  /// Rays longer than this are cut and their end is not marked occupied, metres. Default:
-  /// the sensor's depth_max_m (taken from nbv.sensor when left infinite).
-  double max_range_m = std::numeric_limits<double>::infinity();
+  /// Rays longer than this are cut and their end is not marked occupied, metres; +infinity:
+  /// no limit (fvx integrate's default). Unset: the sensor's depth_max_m (nbv.sensor).
+  std::optional<double> max_range_m;
   bool register_scans = false;                     ///< step 2; off when the poses are exact
   registration::Config registration;
   voids::ClusterConfig clusters;                   ///< Eq. 2 region growing
@@ -34,6 +34,9 @@ struct Config {
   /// voids::void_width_for_target gives it for a target size). 1: every void cell (the paper).
   int min_void_width_cells = 1;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
+  /// Steps 4–6, frontiers, voids and frontier-voids; false: the step ends with the map
+  /// (fvx integrate), and the search is off too.
+  bool analyse = true;
   /// Step 7, the next-best-view search; false: the step ends with frontiers and voids (its
   /// nbv result is empty, with the reason "not searched").
   bool search = true;
@@ -44,6 +47,9 @@ struct Config {
 /// accumulated cloud that scans are registered to.
 struct State {
   explicit State(double resolution_m) : map(resolution_m) {}
+  /// Continues `existing`; with registration, its occupied cell centres seed the target
+  /// (cell centres shift surfaces by up to half a cell, so scan points join them as they come).
+  State(map::OccupancyMap existing, const Config& config);
   map::OccupancyMap map;
   frontiers::FrontierSet frontier_set;
   voids::VoidSet void_set;
@@ -53,6 +59,9 @@ struct State {
   /// hidden from there, they leave U (nbv::Config::hidden_void_cells). Key order.
   std::vector<map::VoxelKey> hidden_void_cells;
   int steps = 0;
+  /// The last step updated frontier_set and void_set (Config::analyse); otherwise the next
+  /// step that analyses rebuilds them from the map.
+  bool analysed = false;
 };
 
 struct Timing {
@@ -63,7 +72,7 @@ struct StepResult {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();  ///< the pose integrated at
   std::optional<registration::Result> registration;  ///< when attempted
   scan::FilterStats filtered;
-  std::size_t changed_cells = 0;                     ///< cells whose state the scan changed
+  map::IntegrationCounts integration;                ///< what step 3 changed
   std::size_t expected_revealed = 0;                 ///< of the expected void cells, now known
   std::size_t expected_hidden = 0;                   ///< … still unknown (added to State::hidden_void_cells)
   frontier_voids::Analysis analysis;                 ///< after the scan

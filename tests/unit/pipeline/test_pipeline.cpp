@@ -65,7 +65,7 @@ TEST(Pipeline, IncrementalAnalysisEqualsFromScratch) {
   EXPECT_EQ(last.analysis.void_cells, scratch.void_cells);
   EXPECT_EQ(last.analysis.void_clusters.size(), scratch.void_clusters.size());
   ASSERT_FALSE(last.nbv.views.empty()) << last.nbv.reason;
-  EXPECT_GT(last.changed_cells, 0u);
+  EXPECT_GT(last.integration.changed_cells, 0u);
 }
 
 TEST(Pipeline, AWideVoidCountsOnlyCellsThatCouldHideTheTarget) {
@@ -101,7 +101,7 @@ TEST(Pipeline, ABlankScanChangesNothing) {
   blank.T_world_sensor = crates.views[1];
   const StepResult second = run_step(state, blank, std::nullopt, config);
   EXPECT_EQ(second.filtered.kept, 0u);
-  EXPECT_EQ(second.changed_cells, 0u);
+  EXPECT_EQ(second.integration.changed_cells, 0u);
   EXPECT_EQ(state.map.stats().occupied_leaves, leaves);
   EXPECT_EQ(second.analysis.void_cells, first.analysis.void_cells);
 }
