@@ -51,7 +51,7 @@ struct Candidate {
 CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, BuildStats* stats,
                                    const std::function<void(std::size_t, std::size_t)>& progress,
                                    const std::atomic<bool>* cancel) {
-  FVX_ASSERT(config.validate().empty(), "invalid BuildConfig");
+  throw_if_problems("capmap build", config.validate());
   const DirectionSet directions(config.directions);
   const double v = config.voxel_m;
 

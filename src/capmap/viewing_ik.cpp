@@ -82,7 +82,7 @@ Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vect
 
 IkResult solve_viewing_ik(const Arm& arm, const Eigen::Vector3d& position_base, const Eigen::Vector3d& direction_base,
                           const IkConfig& config, std::mt19937_64& rng, const Eigen::VectorXd* start) {
-  FVX_ASSERT(config.validate().empty(), "invalid IkConfig");
+  throw_if_problems("viewing IK", config.validate());
   FVX_ASSERT(std::abs(direction_base.norm() - 1.0) < 1e-6, "the viewing direction must be a unit vector");
   IkResult result;
   Attempt best;

@@ -333,7 +333,7 @@ int run_replay(const Args& args) {
                      std::to_string(scans.size()) + " views");
   {
     const auto problems = config.validate();
-    if (!problems.empty()) throw UsageError("fvx replay: " + problems.front());
+    throw_if_problems("fvx replay", problems);
   }
 
   std::filesystem::create_directories(dir / "maps");

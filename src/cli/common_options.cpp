@@ -52,7 +52,7 @@ std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::stri
   if (!args.has("intrinsics") && !any_flag) return std::nullopt;
   const io::Intrinsics K = apply_intrinsics_flags(
       args, args.has("intrinsics") ? io::read_intrinsics(args.get("intrinsics")) : io::Intrinsics{});
-  for (const auto& problem : K.validate()) throw UsageError("fvx " + command + ": intrinsics: " + problem);
+  throw_if_problems("fvx " + command + ": intrinsics", K.validate());
   return K;
 }
 
@@ -75,7 +75,7 @@ io::DepthCamera parse_depth_camera(const Args& args, const std::string& command)
   camera.intrinsics = apply_intrinsics_flags(args, camera.intrinsics);
   camera.depth_min_m = args.number("depth-min", camera.depth_min_m, 0.0, 1e3);
   camera.depth_max_m = args.number("depth-max", camera.depth_max_m, 0.0, 1e3, true);
-  for (const auto& problem : camera.validate()) throw UsageError("fvx " + command + ": sensor: " + problem);
+  throw_if_problems("fvx " + command + ": sensor", camera.validate());
   return camera;
 }
 

@@ -72,7 +72,7 @@ Intrinsics intrinsics_from_json(const nlohmann::json& j, const std::string& path
   if (j.contains("width")) k.width = static_cast<int>(number(j, "width", path));
   if (j.contains("height")) k.height = static_cast<int>(number(j, "height", path));
   const auto problems = k.validate();
-  if (!problems.empty()) throw FileError(path, problems.front());
+  if (!problems.empty()) throw FileError(path, join_problems(problems));
   return k;
 }
 
@@ -99,7 +99,7 @@ DepthCamera read_depth_camera(const std::string& path) {
   }
   camera.intrinsics = intrinsics_from_json(j, path);
   const auto problems = camera.validate();
-  if (!problems.empty()) throw FileError(path, problems.front());
+  if (!problems.empty()) throw FileError(path, join_problems(problems));
   return camera;
 }
 

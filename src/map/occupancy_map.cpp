@@ -39,7 +39,7 @@ std::vector<std::string> SensorModel::validate() const {
 OccupancyMap::OccupancyMap(double resolution_m, const SensorModel& model) {
   FVX_ASSERT(resolution_m > 0.0 && std::isfinite(resolution_m),
              "resolution " + std::to_string(resolution_m));
-  FVX_ASSERT(model.validate().empty(), "invalid SensorModel");
+  throw_if_problems("sensor model", model.validate());
   impl_ = std::make_unique<Impl>(resolution_m);
   auto& tree = impl_->tree;
   tree.setProbHit(model.prob_hit);

@@ -175,7 +175,7 @@ PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_void
   st.reach = std::move(reach);
   st.config = std::move(config);
   const auto problems = st.config.validate();
-  if (!problems.empty()) throw UsageError("nbv: " + problems.front());
+  throw_if_problems("nbv", problems);
   if (st.reach && !st.reach->capmap) throw UsageError("nbv: a reach without a capability map");
   if (st.config.strategy == Strategy::Exhaustive && !st.reach)
     throw UsageError("strategy exhaustive enumerates the capability map's voxels and directions: give one");

@@ -38,7 +38,7 @@ State::State(map::OccupancyMap existing, const Config& config) : map(std::move(e
 
 StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
   const auto problems = config.validate();
-  if (!problems.empty()) throw UsageError("pipeline: " + problems.front());
+  throw_if_problems("pipeline", problems);
   StepResult r;
 
   // Step 1: the scan, without NaNs, within the sensor's depths.

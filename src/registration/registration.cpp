@@ -157,7 +157,7 @@ Eigen::Isometry3d keep_prior_along_weak_directions(const Cloud& source_fine, con
 Result align(const std::vector<Eigen::Vector3d>& points_sensor,
              const Eigen::Isometry3d& T_world_sensor_prior,
              const std::vector<Eigen::Vector3f>& target_world, const Config& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid registration::Config");
+  throw_if_problems("registration", config.validate());
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   Result result;
   result.T_world_sensor = T_world_sensor_prior;

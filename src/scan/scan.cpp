@@ -53,7 +53,7 @@ std::vector<Eigen::Vector3d> voxel_downsample(const std::vector<Eigen::Vector3d>
 }
 
 FilterStats filter(Scan& scan, const FilterConfig& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid FilterConfig");
+  throw_if_problems("filter", config.validate());
   FilterStats stats;
   stats.input = scan.points_sensor.size();
   std::vector<Eigen::Vector3d> kept;

@@ -89,7 +89,7 @@ std::vector<std::string> ExploreConfig::validate() const {
 ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& reach, const ExploreConfig& config,
                       const std::function<void(const ViewRecord&, const pipeline::State&)>& on_view) {
   const auto problems = config.validate();
-  if (!problems.empty()) throw UsageError("explore: " + problems.front());
+  throw_if_problems("explore", problems);
 
   const auto [T_start, start_joints] = start_configuration(reach, config.T_world_sensor_start, config.seed);
   Eigen::Isometry3d T_true = T_start;

@@ -59,7 +59,7 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
             const std::function<void(int, const pipeline::State&)>& on_map,
             const std::function<void(const ReplayView&)>& on_view) {
   const auto problems = config.validate();
-  if (!problems.empty()) throw UsageError("replay: " + problems.front());
+  throw_if_problems("replay", problems);
   const std::size_t count =
       config.last_view < 0 ? scans.size() : std::min(scans.size(), std::size_t(config.last_view) + 1);
 

@@ -44,7 +44,7 @@ double gaussian(std::uint64_t seed, std::uint64_t frame, std::uint64_t pixel) {
 
 Frame render(const RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
              const SensorConfig& config, std::uint64_t frame_index) {
-  FVX_ASSERT(config.validate().empty(), "invalid SensorConfig");
+  throw_if_problems("sensor", config.validate());
   const io::Intrinsics& K = config.intrinsics;
   Frame frame;
   frame.depth.width = K.width;

@@ -252,7 +252,7 @@ Field to_field(Shared& shared, double R, const std::vector<Plan>& plans, const s
 }  // namespace
 
 Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, const Config& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid utility::Config");
+  throw_if_problems("utility", config.validate());
   // Largest utility first (ties: lower index): a thread that takes frontier-voids in this
   // order meets a cell's largest contributors first, and the merge keeps this order.
   std::vector<std::int32_t> order;

@@ -126,7 +126,7 @@ VoidCluster describe(std::vector<map::VoxelKey> cells, const map::OccupancyMap& 
 
 std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
                                        const ClusterConfig& config) {
-  FVX_ASSERT(config.validate().empty(), "invalid ClusterConfig");
+  throw_if_problems("void clusters", config.validate());
   const std::vector<int> owner = grow(map, cells, config);
   // Number clusters by their smallest key: `cells` is in key order, so in order of first
   // appearance; and each cluster's cells come out in key order too.

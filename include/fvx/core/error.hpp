@@ -7,6 +7,7 @@
 ///    exit status (UsageError → 2, everything else → 1).
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fvx {
 
@@ -33,6 +34,13 @@ class FileError : public Error {
  private:
   std::string path_;
 };
+
+/// All of a config's problems on one line, "p1; p2; …" (validate() lists every problem, so
+/// a user fixes them in one go).
+std::string join_problems(const std::vector<std::string>& problems);
+
+/// Throws UsageError("<what>: " + join_problems(problems)) when there is any.
+void throw_if_problems(const std::string& what, const std::vector<std::string>& problems);
 
 namespace detail {
 [[noreturn]] void assert_failed(const char* expression, const char* file, int line,

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "fvx/core/error.hpp"
 #include "fvx/pipeline/pipeline.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
@@ -195,6 +196,28 @@ TEST(Pipeline, RegistrationUndoesPoseNoise) {
               near, registered.size(), 100.0 * double(near) / double(registered.size()), near_unregistered,
               c.map.occupied_centers().size(), worst_prior_error_m);
   EXPECT_GE(double(near), 0.95 * double(registered.size())) << near << " of " << registered.size();
+}
+
+// A bad config is input, not a bug: the step throws, naming every problem on one line, and
+// a stage called directly with a bad config throws too (it used to abort).
+TEST(Pipeline, ABadConfigNamesEveryProblemAtOnce) {
+  Config config;
+  config.resolution_m = -1.0;
+  config.min_void_width_cells = 0;
+  config.filter.depth_min_m = 3.0;
+  config.filter.depth_max_m = 1.0;
+  State state(0.025);
+  try {
+    run_step(state, scan::Scan{}, std::nullopt, config);
+    FAIL() << "a bad config was run";
+  } catch (const UsageError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const char* field : {"resolution_m", "min_void_width_cells", "filter: "})
+      EXPECT_NE(message.find(field), std::string::npos) << field << " missing from: " << message;
+  }
+  scan::Scan scan;
+  EXPECT_THROW(scan::filter(scan, config.filter), UsageError);
 }
 
 }  // namespace
