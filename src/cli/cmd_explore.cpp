@@ -15,7 +15,9 @@
 #include "fvx/core/parse.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/io/cloud_file.hpp"
+#include "fvx/session/recorder.hpp"
 #include "fvx/session/session.hpp"
+#include "fvx/session/start.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/exploration_score.hpp"
 #include "fvx/viewpoints/fov.hpp"
@@ -115,39 +117,6 @@ Json row_json(const Row& r) {
   return j;
 }
 
-/// The default first view with an arm: of the capability map's reachable poses outside the
-/// search space that aim within 10° of `target`, the farthest from it (the widest view of
-/// the scene, as a robot's first look would be); without any, the best-aimed pose.
-Eigen::Isometry3d start_facing(const nbv::Reach& reach, const Eigen::Vector3d& target, const Eigen::AlignedBox3d& S) {
-  const capmap::CapabilityMap& cm = *reach.capmap;
-  const double aimed = std::cos(10.0 * M_PI / 180.0);
-  double best_cos = -2.0, best_far = -1.0;
-  Eigen::Vector3d eye = Eigen::Vector3d::Zero(), dir = Eigen::Vector3d::UnitZ();
-  for (const auto& [voxel, bits] : cm.voxels()) {
-    const Eigen::Vector3d p = reach.T_world_base * cm.center_of(voxel);
-    if (S.contains(p)) continue;
-    const double distance = (target - p).norm();
-    const Eigen::Vector3d want = (target - p) / distance;
-    for (const int d : cm.reachable_directions(cm.center_of(voxel))) {
-      const Eigen::Vector3d d_world = reach.T_world_base.linear() * cm.directions()[d];
-      const double c = d_world.dot(want);
-      // Aimed poses win by distance; until one is found, the best aim wins.
-      const bool better = c >= aimed ? (best_cos < aimed || distance > best_far + 1e-9) : (best_cos < aimed && c > best_cos);
-      if (better) {
-        best_cos = c;
-        best_far = distance;
-        eye = p;
-        dir = d_world;
-      }
-    }
-  }
-  if (best_cos < -1.0) throw Error("fvx explore: the capability map reaches no pose outside the search space; give --start");
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = eye;
-  T.linear() = viewpoints::look_along(dir, 0.0);
-  return T;
-}
-
 }  // namespace
 
 int run_explore(const Args& args) {
@@ -210,44 +179,30 @@ int run_explore(const Args& args) {
   if (!pc.bounds_m)
     throw UsageError("fvx explore: the scene has no search space (sidecar search_space); give --bounds");
   const Eigen::AlignedBox3d S = *pc.bounds_m;
-  if (args.has("start")) {
-    config.T_world_sensor_start = parse_look_at(args.get("start"), "--start");
-  } else if (arm_inputs.reach) {
-    config.T_world_sensor_start = start_facing(*arm_inputs.reach, S.center() - Eigen::Vector3d(0, 0, 0.1), S);
-  } else {
-    const Eigen::Vector3d eye = arm_inputs.T_world_base * Eigen::Vector3d(-0.15, 0.0, 0.95);
-    config.T_world_sensor_start.translation() = eye;
-    config.T_world_sensor_start.linear() = viewpoints::look_along(S.center() - Eigen::Vector3d(0, 0, 0.1) - eye, 0.0);
-  }
+  config.T_world_sensor_start =
+      args.has("start") ? parse_look_at(args.get("start"), "--start")
+                        : session::default_start(arm_inputs.reach, arm_inputs.T_world_base, S,
+                                                 S.center() - Eigen::Vector3d(0, 0, 0.1));
   {
     const auto problems = config.validate();
-    if (!problems.empty()) throw UsageError("fvx explore: " + problems.front());
+    throw_if_problems("fvx explore", problems);
   }
   const auto caster = sim::make_ray_caster(scene.mesh);
   const double R = pc.resolution_m;
-  // Ground truth over S grown by a margin, so the air around the containers reaches the
-  // border, and over every place the sensor can be (the arm's capability map, the start):
-  // rays of the observability check start inside it.
-  Eigen::AlignedBox3d gt_region(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25));
-  gt_region.extend(config.T_world_sensor_start.translation());
+  const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
+  if (sim::inside_solid(*caster, eye.cast<float>()))
+    throw Error("fvx explore: the start pose (" + fixed(eye.x(), 3) + ", " + fixed(eye.y(), 3) + ", " +
+                fixed(eye.z(), 3) + ") is inside an obstacle of the scene");
+  // Ground truth around S and over every place the sensor can be (the start, the arm's
+  // capability map): rays of the observability check start there.
+  std::vector<Eigen::Vector3d> sensor_positions = {eye};
   if (arm_inputs.reach)
     for (const auto& entry : arm_inputs.capability_map->voxels())
-      gt_region.extend(arm_inputs.T_world_base * arm_inputs.capability_map->center_of(entry.first));
-  gt_region = gt_region.intersection(Eigen::AlignedBox3d(S.min() - Eigen::Vector3d::Constant(2.0),
-                                                         S.max() + Eigen::Vector3d::Constant(2.0)));
-  {
-    const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
-    const Eigen::Vector3d centre = ((eye.array() * (1.0 / R)).floor() + 0.5).matrix() * R;  // as cell_of()
-    const Eigen::Vector3d quarter = Eigen::Vector3d::Constant(R / 4);
-    const sim::GroundTruth at_start(scene.mesh, *caster, R, Eigen::AlignedBox3d(centre - quarter, centre + quarter));
-    if (at_start.solid(at_start.cell_of(eye)))
-      throw Error("fvx explore: the start pose (" + fixed(eye.x(), 3) + ", " + fixed(eye.y(), 3) + ", " +
-                  fixed(eye.z(), 3) + ") is inside an obstacle of the scene");
-  }
+      sensor_positions.push_back(arm_inputs.T_world_base * arm_inputs.capability_map->center_of(entry.first));
   session::start_configuration(arm_inputs.reach, config.T_world_sensor_start, config.seed);  // throws if unreachable
   Progress progress(args.has("progress"));
   progress.update("fvx explore: ground truth of the search space");
-  const sim::GroundTruth gt(scene.mesh, *caster, R, gt_region);
+  const sim::GroundTruth gt(scene.mesh, *caster, R, sim::exploration_region(S, sensor_positions));
   std::optional<Eigen::AlignedBox3d> target;
   if (scene.info.target) target = scene.info.target->box;
   sim::ExplorationScore score(gt, S, target);
@@ -255,28 +210,16 @@ int run_explore(const Args& args) {
     // Observable = what some pose of the arm's capability map would reveal (coarse rays:
     // the union over thousands of poses fills their gaps).
     progress.update("fvx explore: the space the arm can observe at all (ground truth)");
-    const nbv::Reach& reach = *arm_inputs.reach;
-    const capmap::CapabilityMap& cm = *reach.capmap;
-    std::vector<Eigen::Isometry3d> poses;
-    for (const auto& [voxel, bits] : cm.voxels()) {
-      const Eigen::Vector3d p = reach.T_world_base * cm.center_of(voxel);
-      const Eigen::Vector3i cell = gt.cell_of(p);
-      if (gt.contains(cell) && gt.solid(cell)) continue;
-      for (const int d : cm.reachable_directions(cm.center_of(voxel))) {
-        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-        T.translation() = p;
-        T.linear() = viewpoints::look_along(reach.T_world_base.linear() * cm.directions()[d], 0.0);
-        poses.push_back(T);
-      }
-    }
+    const std::vector<Eigen::Isometry3d> poses =
+        session::capmap_view_poses(*arm_inputs.reach, [&](const Eigen::Vector3d& p) {
+          const Eigen::Vector3i cell = gt.cell_of(p);
+          return gt.contains(cell) && gt.solid(cell);
+        });
     score.restrict_to_views(gt, poses, viewpoints::ray_fan(nc.sensor.intrinsics, 20, 15), nc.sensor.depth_min_m,
                             nc.sensor.depth_max_m, nc.threads);
   }
 
   // The session directory: created only now that every input is good.
-  std::filesystem::create_directories(dir / "scans");
-  std::filesystem::create_directories(dir / "maps");
-  std::filesystem::create_directories(dir / "reports");
   session::Manifest manifest;
   manifest.created_by = std::string("fvx explore ") + version();
   manifest.scene = args.positional[0];
@@ -298,8 +241,7 @@ int run_explore(const Args& args) {
   manifest.target_size_m = target_size_m;
   manifest.accumulation = utility::to_string(nc.accumulation);
   manifest.max_utility_vectors = nc.max_utility_vectors;
-  session::write_depth_camera((dir / manifest.sensor).string(), nc.sensor);
-  session::write_manifest(dir.string(), manifest);
+  session::Recorder recorder(dir.string(), std::move(manifest), nc.sensor);
 
   const std::vector<std::string> joint_names =
       arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
@@ -334,23 +276,9 @@ int run_explore(const Args& args) {
         rows.push_back(row);
 
         // The view's files, then the manifest that lists them.
-        session::ManifestView mv;
-        mv.view = v.view;
-        mv.scan = "scans/" + view_file_name(v.view, ".pcd");
-        mv.map = "maps/" + view_file_name(v.view, ".ot");
-        mv.report = "reports/" + view_file_name(v.view, ".json");
-        mv.T_world_sensor_prior = v.T_world_sensor_prior;
-        mv.T_world_sensor_true = v.T_world_sensor_true;
-        mv.joints_rad = v.joints_rad;
-        mv.stamp_s = double(v.view);
-        std::vector<Eigen::Vector3f> organised;
-        organised.reserve(v.points_sensor.size());
-        for (const auto& p : v.points_sensor) organised.push_back(p.cast<float>());
-        io::write_pcd((dir / mv.scan).string(), organised, v.T_world_sensor_prior, nc.sensor.intrinsics.width,
-                      nc.sensor.intrinsics.height);
-        state.map.save((dir / mv.map).string());
+        const session::ManifestView files = recorder.files_of(v);
         Json report = new_report("explore");
-        report["inputs"] = {{"scene", args.positional[0]}, {"view", v.view}, {"scan", mv.scan}, {"map", mv.map}};
+        report["inputs"] = {{"scene", args.positional[0]}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}};
         Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
         results["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
         results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
@@ -358,9 +286,7 @@ int run_explore(const Args& args) {
         results["row"] = row_json(row);
         report["results"] = results;
         report["warnings"] = step.analysis.warnings;
-        write_report(report, (dir / mv.report).string());
-        manifest.views.push_back(mv);
-        session::write_manifest(dir.string(), manifest);
+        recorder.add(v, state.map, report_text(report));
         progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.map_void_cells) +
                         " void cells, next view sees " + std::to_string(row.void_cells) + ", " +
                         fixed(100.0 * row.known_fraction, 1) + " % known" + (row.target_seen ? ", target seen" : ""));

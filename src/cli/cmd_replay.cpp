@@ -16,6 +16,7 @@
 #include "fvx/core/error.hpp"
 #include "fvx/io/visual.hpp"
 #include "fvx/scan/load.hpp"
+#include "fvx/session/recorder.hpp"
 #include "fvx/session/replay.hpp"
 #include "fvx/session/session.hpp"
 #include "fvx/voids/width.hpp"
@@ -348,7 +349,7 @@ int run_replay(const Args& args) {
   try {
     // Each view's map is written while its search runs (the next scan changes the map).
     const auto save_map = [&](int view, const pipeline::State& state) {
-      if (view + 1 >= from) state.map.save((dir / "maps" / view_file_name(view, ".ot")).string());
+      if (view + 1 >= from) state.map.save((dir / "maps" / session::view_file_name(view, ".ot")).string());
     };
     session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
       const pipeline::StepResult& step = v.step;
@@ -381,7 +382,7 @@ int run_replay(const Args& args) {
         results["row"] = row_json(row);
         report["results"] = results;
         report["warnings"] = step.analysis.warnings;
-        write_report(report, (dir / "reports" / view_file_name(v.view, ".json")).string());
+        write_report(report, (dir / "reports" / session::view_file_name(v.view, ".json")).string());
       }
       progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
                       std::to_string(row.map_void_cells) + " void cells, best view sees " +

@@ -24,8 +24,10 @@ Json new_report(const std::string& command) {
   return report;
 }
 
+std::string report_text(const Json& report) { return report.dump(2) + "\n"; }
+
 void write_report(const Json& report, const std::string& path) {
-  const std::string text = report.dump(2) + "\n";
+  const std::string text = report_text(report);
   if (path.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
     std::fflush(stdout);

@@ -12,8 +12,10 @@ using Json = nlohmann::ordered_json;
 ///  "warnings": []} — the fields every report has, in that order.
 Json new_report(const std::string& command);
 
-/// Writes the report (two-space indented, newline-terminated) to stdout when `path` is empty,
-/// otherwise atomically to `path`.
+/// The report as written: two-space indented, newline-terminated.
+std::string report_text(const Json& report);
+
+/// Writes report_text(report) to stdout when `path` is empty, otherwise atomically to `path`.
 void write_report(const Json& report, const std::string& path);
 
 /// {"position_m": [x, y, z], "quaternion_xyzw": [qx, qy, qz, qw]} with qw >= 0.

@@ -20,12 +20,6 @@ std::string fixed(double v, int digits) {
   return buf;
 }
 
-std::string view_file_name(int view, const char* ext) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "view%03d%s", view, ext);
-  return buf;
-}
-
 void print_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                  Format format, std::ostream& out) {
   const bool csv = format == Format::csv;

@@ -17,9 +17,6 @@ Format parse_format(const Args& args);
 /// `v` with `digits` decimals.
 std::string fixed(double v, int digits);
 
-/// "viewNNN" + ext: the file of a view (0-based) in a session or replay folder.
-std::string view_file_name(int view, const char* ext);
-
 /// The header and rows as markdown or csv (not json).
 void print_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
                  Format format, std::ostream& out);

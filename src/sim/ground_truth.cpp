@@ -138,4 +138,12 @@ map::OccupancyMap GroundTruth::to_map() const {
   return map;
 }
 
+Eigen::AlignedBox3d exploration_region(const Eigen::AlignedBox3d& S,
+                                       const std::vector<Eigen::Vector3d>& sensor_positions_m) {
+  Eigen::AlignedBox3d region(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25));
+  for (const Eigen::Vector3d& p : sensor_positions_m) region.extend(p);
+  return region.intersection(
+      Eigen::AlignedBox3d(S.min() - Eigen::Vector3d::Constant(2.0), S.max() + Eigen::Vector3d::Constant(2.0)));
+}
+
 }  // namespace fvx::sim

@@ -57,4 +57,10 @@ class GroundTruth {
   std::size_t solid_count_ = 0;
 };
 
+/// The box an exploration's ground truth covers: the search space `S` grown by 0.25 m (so the
+/// air around the containers reaches its border) and every place the sensor can be
+/// (`sensor_positions_m`: rays of the observability check start there), within S grown by 2 m.
+Eigen::AlignedBox3d exploration_region(const Eigen::AlignedBox3d& S,
+                                       const std::vector<Eigen::Vector3d>& sensor_positions_m);
+
 }  // namespace fvx::sim

@@ -11,7 +11,7 @@
 #include "fvx/session/session.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
-#include "fvx/viewpoints/fov.hpp"
+#include "crates_explore.hpp"
 
 namespace fvx::session {
 namespace {
@@ -21,26 +21,9 @@ struct Recorded {
   std::vector<std::vector<map::VoxelKey>> hidden;  // State::hidden_void_cells after each view
 };
 
-ExploreConfig small_explore(const sim::Scene& scene) {
-  ExploreConfig config;
-  config.pipeline.bounds_m = scene.info.search_space;
-  config.pipeline.nbv.ray_cols = 40;
-  config.pipeline.nbv.ray_rows = 30;
-  config.max_views = 5;
-  const Eigen::Vector3d eye(0.05, 0.0, 0.95), target = scene.info.search_space->center();
-  config.T_world_sensor_start.translation() = eye;
-  config.T_world_sensor_start.linear() = viewpoints::look_along(target - eye, 0.0);
-  return config;
-}
-
 Recorded explore_crates(const ExploreConfig& config, const sim::Scene& scene) {
   const auto caster = sim::make_ray_caster(scene.mesh);
-  const Sensor kinect = [&](const Eigen::Isometry3d& T, int view) {
-    const sim::Frame f = sim::render(*caster, T, sim::SensorConfig{}, std::uint64_t(view));
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& p : f.points_sensor) points.push_back(p.cast<double>());
-    return points;
-  };
+  const Sensor kinect = test::kinect_on(*caster);
   Recorded out;
   explore(kinect, std::nullopt, config, [&](const ViewRecord& v, const pipeline::State& s) {
     out.records.push_back(v);
@@ -69,7 +52,7 @@ std::vector<RecordedScan> as_recording(const std::vector<ViewRecord>& records, i
 
 TEST(Replay, AnExploreRunReplaysToItsOwnViewsWhileSearchesOverlapTheNextScan) {
   const sim::Scene scene = sim::builtin_scene("crates");
-  const ExploreConfig explore_config = small_explore(scene);
+  const ExploreConfig explore_config = test::crates_explore(scene, 5);
   const Recorded truth = explore_crates(explore_config, scene);
   ASSERT_GE(truth.records.size(), 3u);
 
@@ -114,8 +97,7 @@ TEST(Replay, AnExploreRunReplaysToItsOwnViewsWhileSearchesOverlapTheNextScan) {
 
 TEST(Replay, AScanThatFailsToLoadStopsAtItsViewAfterTheViewsBefore) {
   const sim::Scene scene = sim::builtin_scene("crates");
-  ExploreConfig explore_config = small_explore(scene);
-  explore_config.max_views = 3;
+  const ExploreConfig explore_config = test::crates_explore(scene, 3);
   const Recorded truth = explore_crates(explore_config, scene);
   ASSERT_EQ(truth.records.size(), 3u);
   ReplayConfig config;

@@ -10,6 +10,7 @@
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/viewpoints/fov.hpp"
+#include "crates_explore.hpp"
 #include "test_support.hpp"
 
 namespace fvx::session {
@@ -100,20 +101,8 @@ TEST(Session, ABadManifestNamesTheProblem) {
 TEST(Explore, TheLoopMovesRevealsAndRepeatsItself) {
   const sim::Scene scene = sim::builtin_scene("crates");
   const auto caster = sim::make_ray_caster(scene.mesh);
-  const Sensor kinect = [&](const Eigen::Isometry3d& T, int view) {
-    const sim::Frame f = sim::render(*caster, T, sim::SensorConfig{}, std::uint64_t(view));
-    std::vector<Eigen::Vector3d> points;
-    for (const auto& p : f.points_sensor) points.push_back(p.cast<double>());
-    return points;
-  };
-  ExploreConfig config;
-  config.pipeline.bounds_m = scene.info.search_space;
-  config.pipeline.nbv.ray_cols = 40;
-  config.pipeline.nbv.ray_rows = 30;
-  config.max_views = 4;
-  const Eigen::Vector3d eye(0.05, 0.0, 0.95), target = scene.info.search_space->center();
-  config.T_world_sensor_start.translation() = eye;
-  config.T_world_sensor_start.linear() = viewpoints::look_along(target - eye, 0.0);
+  const Sensor kinect = test::kinect_on(*caster);
+  const ExploreConfig config = test::crates_explore(scene, 4);
   auto run = [&] {
     std::vector<ViewRecord> records;
     const ExploreResult r = explore(kinect, std::nullopt, config, [&](const ViewRecord& v, const pipeline::State& s) {
