@@ -7,6 +7,7 @@
 
 #include "command_table.hpp"
 #include "fvx/capmap/build.hpp"
+#include "fvx/capmap/evaluate.hpp"
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
@@ -182,37 +183,13 @@ int eval(const Args& args, Json& report) {
   std::vector<std::string> warnings;
   if (arm.urdf_hash() != h.urdf_hash) warnings.push_back("the URDF differs from the one the map was built from");
   const int samples = int(args.integer("samples", 2000, 1, 100000000));
-  std::mt19937_64 rng(std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max())));
-  // Precision: points the map calls reachable (a set bit, anywhere in its voxel, its
-  // direction), checked by IK with the map's tolerances widened by that quantisation.
-  std::vector<std::pair<std::int64_t, int>> bits;
-  for (const auto& [voxel, words] : map.voxels())
-    for (int d = 0; d < h.directions; ++d)
-      if (words[std::size_t(d / 64)] >> (d % 64) & 1u) bits.emplace_back(voxel, d);
-  capmap::IkConfig ik;
-  ik.position_tolerance_m = h.position_tolerance_m + std::sqrt(3.0) * h.voxel_m / 2;
-  ik.angle_tolerance_rad = h.angle_tolerance_rad + 0.5 * map.directions().mean_spacing_rad();
-  std::uniform_real_distribution<double> jitter(-0.5, 0.5);
-  int confirmed = 0, asked = 0;
-  for (int i = 0; i < samples && !bits.empty(); ++i, ++asked) {
-    const auto& [voxel, d] = bits[std::size_t(rng() % bits.size())];
-    const Eigen::Vector3d p = map.center_of(voxel) + h.voxel_m * Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
-    confirmed += capmap::solve_viewing_ik(arm, p, map.directions()[d], ik, rng).reached;
-  }
-  // Recall: poses the arm reaches by construction (forward kinematics of random
-  // configurations), looked up in the map.
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int found = 0;
-  for (int i = 0; i < samples; ++i) {
-    Eigen::VectorXd q(arm.dof());
-    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
-    found += map.reachable(arm.fk(q).translation(), arm.viewing_direction(q));
-  }
+  const auto seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  const capmap::Evaluation e = capmap::evaluate(map, arm, samples, seed);
   report["inputs"] = {{"map", args.positional[1]}, {"urdf", args.positional[2]}};
-  report["results"] = {{"precision", asked ? double(confirmed) / asked : 0.0},
-                       {"precision_queries", asked},
-                       {"recall", double(found) / samples},
-                       {"recall_queries", samples}};
+  report["results"] = {{"precision", e.precision()},
+                       {"precision_queries", e.precision_queries},
+                       {"recall", e.recall()},
+                       {"recall_queries", e.recall_queries}};
   report["warnings"] = warnings;
   return 0;
 }

@@ -1,9 +1,13 @@
 #include "fvx/scan/load.hpp"
 
+#include <glob.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "fvx/core/error.hpp"
 #include "fvx/io/cloud_file.hpp"
@@ -143,6 +147,62 @@ Scan load_scan(const ScanSource& source, const LoadConfig& config,
     if (!viewpoint) warnings.push_back(source.path + ": no pose given; using the identity");
   }
   return scan;
+}
+
+std::vector<std::string> expand_glob(const std::string& pattern, const std::string& what) {
+  glob_t g{};
+  const int rc = ::glob(pattern.c_str(), 0, nullptr, &g);
+  std::vector<std::string> paths;
+  if (rc == 0)
+    for (std::size_t i = 0; i < g.gl_pathc; ++i) paths.emplace_back(g.gl_pathv[i]);
+  globfree(&g);
+  if (paths.empty()) throw UsageError(what + " '" + pattern + "' matches no file");
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+namespace {
+
+/// Per line of a TUM associations file, the depth image it names (relative to the folder).
+std::vector<std::string> associated_depth_images(const std::string& associations) {
+  std::ifstream in(associations);
+  if (!in) throw FileError(associations, "cannot open the associations file");
+  std::vector<std::string> names;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string w; fields >> w;) f.push_back(w);
+    std::string depth;
+    for (const auto& w : f)
+      if (w.rfind("depth/", 0) == 0) depth = w;
+    if (depth.empty() && f.size() >= 2) depth = f[1];
+    if (depth.empty())
+      throw FileError(associations + ":" + std::to_string(number),
+                      "expected 'stamp depth/FILE' or 'stamp rgb/FILE stamp depth/FILE'");
+    names.push_back(depth);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> tum_depth_images(const std::string& dir, const std::string& associations) {
+  const std::filesystem::path root(dir);
+  std::vector<std::string> paths;
+  if (!associations.empty()) {
+    for (const std::string& name : associated_depth_images(associations)) paths.push_back((root / name).string());
+  } else {
+    if (!std::filesystem::is_directory(root / "depth")) throw FileError(dir, "not a TUM RGB-D folder: no depth/ inside");
+    for (const auto& e : std::filesystem::directory_iterator(root / "depth"))
+      if (e.is_regular_file()) paths.push_back(e.path().string());
+    std::sort(paths.begin(), paths.end());
+  }
+  if (paths.empty()) throw FileError(dir, "no depth image to replay");
+  return paths;
 }
 
 }  // namespace fvx::scan

@@ -182,4 +182,10 @@ void write_depth_camera(const std::string& path, const io::DepthCamera& c) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
+std::string resolve_path(const std::string& path, const std::string& session_dir) {
+  if (path.empty() || std::filesystem::exists(path)) return path;
+  const std::filesystem::path beside = std::filesystem::path(session_dir) / path;
+  return std::filesystem::exists(beside) ? beside.string() : path;
+}
+
 }  // namespace fvx::session

@@ -57,4 +57,13 @@ ScanPlan plan_scans(const std::vector<std::string>& paths, const LoadConfig& con
 Scan load_scan(const ScanSource& source, const LoadConfig& config,
                std::vector<std::string>& warnings);
 
+/// The files matching a shell pattern (`*`, `?`, `[…]`), in name order; UsageError naming
+/// `what` (the option it came from) when none matches.
+std::vector<std::string> expand_glob(const std::string& pattern, const std::string& what);
+
+/// The depth images of a TUM RGB-D folder `dir`: from the associations file when given (per
+/// line the last column naming a file under depth/, else the second column; `#` comments),
+/// else every file in dir/depth by name. FileError naming the file and line otherwise.
+std::vector<std::string> tum_depth_images(const std::string& dir, const std::string& associations);
+
 }  // namespace fvx::scan

@@ -68,6 +68,10 @@ Manifest read_manifest(const std::string& dir);
 /// Writes the sensor file (io::read_depth_camera's layout) atomically.
 void write_depth_camera(const std::string& path, const io::DepthCamera& camera);
 
+/// A path from a manifest: as written (relative to where explore ran) when it exists, else
+/// relative to the session folder `session_dir` when that exists, else as written.
+std::string resolve_path(const std::string& path, const std::string& session_dir);
+
 struct ExploreConfig {
   pipeline::Config pipeline;                 ///< the map, registration, and the planner (pipeline.nbv.strategy)
   Eigen::Isometry3d T_world_sensor_start = Eigen::Isometry3d::Identity();

@@ -1,6 +1,7 @@
 // Pose priors: matching trajectories to scans, VIEWPOINT, --pose.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "fvx/core/error.hpp"
@@ -87,6 +88,43 @@ TEST(LoadScanRealData, LegacyOpenNiViewpointIsUsedButWarnedAbout) {
 TEST(LoadScan, DepthImageWithoutIntrinsicsIsAUsageError) {
   std::vector<std::string> warnings;
   EXPECT_THROW(load_scan({"frame.png", std::nullopt, PoseSource::Identity}, LoadConfig{}, warnings), UsageError);
+}
+
+TEST(TumFolder, AssociationsNameTheDepthImagesAndABadLineIsNamed) {
+  const test::TempDir dir;
+  std::ofstream(dir / "assoc.txt") << "# rgb then depth\n"
+                                   << "1.0 rgb/1.0.png 1.01 depth/1.01.png\n"
+                                   << "\n"
+                                   << "2.0 depth/2.0.png\n"
+                                   << "3.0 3.0.png\n";
+  EXPECT_EQ(tum_depth_images(dir.path().string(), dir / "assoc.txt"),
+            (std::vector<std::string>{dir / "depth/1.01.png", dir / "depth/2.0.png", dir / "3.0.png"}));
+  std::ofstream(dir / "bad.txt") << "1.0 depth/1.0.png\nonly-a-stamp\n";
+  try {
+    tum_depth_images(dir.path().string(), dir / "bad.txt");
+    FAIL() << "a line without a file was read";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.txt:2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(tum_depth_images(dir.path().string(), dir / "missing.txt"), FileError);
+}
+
+TEST(TumFolder, WithoutAssociationsEveryDepthImageByName) {
+  const test::TempDir dir;
+  EXPECT_THROW(tum_depth_images(dir.path().string(), ""), FileError);  // no depth/
+  std::filesystem::create_directories(dir / "depth");
+  EXPECT_THROW(tum_depth_images(dir.path().string(), ""), FileError);  // empty
+  for (const char* name : {"2.png", "10.png", "1.png"}) std::ofstream(dir / (std::string("depth/") + name)) << "x";
+  EXPECT_EQ(tum_depth_images(dir.path().string(), ""),
+            (std::vector<std::string>{dir / "depth/1.png", dir / "depth/10.png", dir / "depth/2.png"}));
+  EXPECT_EQ(expand_glob(dir / "depth/1*.png", "--scans"),
+            (std::vector<std::string>{dir / "depth/1.png", dir / "depth/10.png"}));
+  try {
+    expand_glob(dir / "depth/*.pcd", "--scans");
+    FAIL() << "a pattern matching nothing was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--scans"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
