@@ -35,7 +35,8 @@ const CommandSpec kExploreSpec = {
              },
              arm_options(),
              {
-                 {"planner", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive"},
+                 {"strategy", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive"},
+                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)"},
                  {"start", 0, "ex,ey,ez,tx,ty,tz", "first view: sensor at eye E looking at T, metres (default, "
                                                    "with an arm: its farthest reachable pose aimed within 10 "
                                                    "degrees of the search space's centre)"},
@@ -133,7 +134,7 @@ int run_explore(const Args& args) {
   session::ExploreConfig config;
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
-  nc.strategy = args.has("planner") ? nbv::parse_strategy(args.get("planner"), "--planner") : nbv::Strategy::FrontierVoid;
+  nc.strategy = parse_strategy_option(args, "explore", nbv::Strategy::FrontierVoid);
   nc.sensor = parse_depth_camera(args, "explore");
   nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
@@ -161,7 +162,7 @@ int run_explore(const Args& args) {
   }
   pc.register_scans = args.has("register") || config.pose_noise_m > 0 || config.pose_noise_deg > 0;
   if (nc.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
-    throw UsageError("fvx explore: --planner exhaustive enumerates a capability map: give --capmap");
+    throw UsageError("fvx explore: --strategy exhaustive enumerates a capability map: give --capmap");
   sim::SensorConfig render_config;
   render_config.intrinsics = nc.sensor.intrinsics;
   render_config.depth_min_m = nc.sensor.depth_min_m;

@@ -1,14 +1,10 @@
 // fvx replay — a recorded session through the closed loop's step, offline: per scan register,
 // integrate, frontiers and voids, next best view; the paper's per-view table (Tables I and II),
 // per-view maps and reports, and a plot of the known and void volume.
-#include <glob.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "analysis_output.hpp"
 #include "command_table.hpp"
@@ -47,7 +43,8 @@ const CommandSpec kReplaySpec = {
              },
              arm_options(),
              {
-                 {"planner", 0, "NAME", "frontier-void (default, or the session's), frontier, random or exhaustive"},
+                 {"strategy", 0, "NAME", "frontier-void (default, or the session's), frontier, random or exhaustive"},
+                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)"},
                  {"register", 0, nullptr, "register every scan to the map (default for --tum and --scans; "
                                           "a session: as recorded)"},
                  {"no-register", 0, nullptr, "integrate scans at their logged poses"},
@@ -123,60 +120,6 @@ Json row_json(const Row& r) {
           {"void_dm3", r.void_dm3}};
 }
 
-/// A path from a manifest: as written (relative to where explore ran), else relative to the
-/// session directory.
-std::string resolve(const std::string& path, const std::filesystem::path& session) {
-  if (path.empty() || std::filesystem::exists(path)) return path;
-  const std::filesystem::path beside = session / path;
-  return std::filesystem::exists(beside) ? beside.string() : path;
-}
-
-std::vector<std::string> expand_glob(const std::string& pattern) {
-  glob_t g{};
-  const int rc = ::glob(pattern.c_str(), 0, nullptr, &g);
-  std::vector<std::string> paths;
-  if (rc == 0)
-    for (std::size_t i = 0; i < g.gl_pathc; ++i) paths.emplace_back(g.gl_pathv[i]);
-  globfree(&g);
-  if (paths.empty()) throw UsageError("fvx replay: --scans '" + pattern + "' matches no file");
-  std::sort(paths.begin(), paths.end());
-  return paths;
-}
-
-/// The depth images of a TUM RGB-D folder: from the associations file (the last column that
-/// names a file under depth/, or the second column), else every file in depth/ by name.
-std::vector<std::string> tum_depth_images(const std::filesystem::path& dir, const std::string& associations) {
-  std::vector<std::string> paths;
-  if (!associations.empty()) {
-    std::ifstream in(associations);
-    if (!in) throw FileError(associations, "cannot open the associations file");
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream fields(line);
-      std::vector<std::string> f;
-      for (std::string w; fields >> w;) f.push_back(w);
-      std::string depth;
-      for (const auto& w : f)
-        if (w.rfind("depth/", 0) == 0) depth = w;
-      if (depth.empty() && f.size() >= 2) depth = f[1];
-      if (depth.empty())
-        throw FileError(associations + ":" + std::to_string(number), "expected 'stamp depth/FILE' or 'stamp rgb/FILE stamp depth/FILE'");
-      paths.push_back((dir / depth).string());
-    }
-  } else {
-    if (!std::filesystem::is_directory(dir / "depth"))
-      throw FileError(dir.string(), "not a TUM RGB-D folder: no depth/ inside");
-    for (const auto& e : std::filesystem::directory_iterator(dir / "depth"))
-      if (e.is_regular_file()) paths.push_back(e.path().string());
-    std::sort(paths.begin(), paths.end());
-  }
-  if (paths.empty()) throw FileError(dir.string(), "no depth image to replay");
-  return paths;
-}
-
 /// What a replay reads: the scans (loaded when their turn comes) and what the JSON names.
 struct Inputs {
   std::vector<session::RecordedScan> scans;
@@ -210,7 +153,7 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   if (arm_flags) {
     load_arm_inputs(args, "fvx replay", arm_inputs);
   } else if (!m.capmap.empty()) {
-    load_arm_files(resolve(m.capmap, session), resolve(m.arm, session), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
+    load_arm_files(session::resolve_path(m.capmap, session.string()), session::resolve_path(m.arm, session.string()), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
                    "fvx replay", arm_inputs);
   }
   for (const session::ManifestView& v : m.views) {
@@ -240,7 +183,7 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
   scan::LoadConfig load;
   if (args.has("tum")) {
     const std::filesystem::path tum = args.get("tum");
-    paths = tum_depth_images(tum, args.has("associations") ? args.get("associations") : "");
+    paths = scan::tum_depth_images(tum.string(), args.has("associations") ? args.get("associations") : "");
     load.trajectory_path = args.has("trajectory") ? args.get("trajectory") : (tum / "groundtruth.txt").string();
     if (!std::filesystem::exists(load.trajectory_path))
       throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
@@ -248,7 +191,7 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
     if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;
     in.source = tum.string();
   } else {
-    paths = expand_glob(args.get("scans"));
+    paths = scan::expand_glob(args.get("scans"), "fvx replay: --scans");
     load.trajectory_path = args.get("trajectory");
     in.source = args.get("scans");
   }
@@ -310,7 +253,7 @@ int run_replay(const Args& args) {
   const std::vector<session::RecordedScan>& scans = inputs.scans;
   const std::string& source_json = inputs.source;
   // Flags over the recording.
-  if (args.has("planner")) nc.strategy = nbv::parse_strategy(args.get("planner"), "--planner");
+  nc.strategy = parse_strategy_option(args, "replay", nc.strategy);
   if (args.has("register")) pc.register_scans = true;
   if (args.has("no-register")) pc.register_scans = false;
   if (args.has("near-voids")) nc.count_near_void_cells = true;
@@ -326,7 +269,7 @@ int run_replay(const Args& args) {
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
   if (nc.strategy == nbv::Strategy::Exhaustive && !arm_inputs.reach)
-    throw UsageError("fvx replay: --planner exhaustive enumerates a capability map: give --capmap");
+    throw UsageError("fvx replay: --strategy exhaustive enumerates a capability map: give --capmap");
   if (args.has("to")) config.last_view = to - 1;
   config.search_every = int(args.integer("search-every", 1, 0, 1000000));
   if (from > int(scans.size()))

@@ -198,4 +198,12 @@ sim::Scene scene_from(const std::string& source, const Args& args) {
   return sim::load_scene(source, args.has("scene-info") ? args.get("scene-info") : "");
 }
 
+nbv::Strategy parse_strategy_option(const Args& args, const std::string& command, nbv::Strategy fallback) {
+  if (args.has("strategy") && args.has("planner"))
+    throw UsageError("fvx " + command + ": --planner is another name for --strategy: give one");
+  if (args.has("strategy")) return nbv::parse_strategy(args.get("strategy"), "--strategy");
+  if (args.has("planner")) return nbv::parse_strategy(args.get("planner"), "--planner");
+  return fallback;
+}
+
 }  // namespace fvx::cli

@@ -64,6 +64,10 @@ double parse_depth_noise(const Args& args);
 /// could hide it count (voids/width.hpp). 0 (the default): every void cell.
 std::vector<OptionSpec> target_size_options();
 /// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp).
+/// The planner: --strategy NAME, or its alias --planner (explore's and replay's name before
+/// one name served every command); `fallback` when neither is given.
+nbv::Strategy parse_strategy_option(const Args& args, const std::string& command, nbv::Strategy fallback);
+
 std::vector<OptionSpec> accumulation_options();
 /// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
 void parse_accumulation(const Args& args, nbv::Config& config);

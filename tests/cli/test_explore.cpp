@@ -133,6 +133,8 @@ TEST(CliExplore, BadInputIsRefusedBeforeASessionIsWritten) {
       {"explore" + kScene + arm() + " --start 0.2,2.5,0.9,0.8,0,0", 1, "out of the arm's reach"},
       {"explore" + kScene + " --capmap '" + source("data/arms/fvx-arm.fcm") + "' --arm other.urdf", 1, "another URDF"},
       {"explore" + kScene + arm() + " --planner best", 2, "--planner"},
+      {"explore" + kScene + arm() + " --strategy best", 2, "--strategy"},
+      {"explore" + kScene + arm() + " --strategy frontier --planner frontier", 2, "another name for --strategy"},
       {"explore" + kScene + arm() + " --pose-noise 0.02", 2, "--pose-noise"},
       {"explore" + kScene + arm() + " --max-views 0", 2, "--max-views"},
       {"explore" + kScene + arm() + " --format xml", 2, "--format"},

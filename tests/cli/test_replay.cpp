@@ -348,6 +348,8 @@ TEST(CliReplay, BadInputIsRefusedOnOneLine) {
       {"replay --tum nowhere --no-capmap -o out", 1},
       {"replay session -o out --base 0,0,0,0,0,0", 2},                   // --base without --capmap
       {"replay session -o out --planner best", 2},
+      {"replay session -o out --strategy best", 2},
+      {"replay session -o out --strategy frontier --planner frontier", 2},
   };
   for (const auto& [args, status] : cases) {
     const RunResult r = run_fvx(dir, args);
