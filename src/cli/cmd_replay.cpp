@@ -215,9 +215,9 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
   return in;
 }
 
-}  // namespace
-
-int run_replay(const Args& args) {
+/// The options that pick and qualify the input: one source, what goes with which, an output
+/// folder that is new or empty. Returns whether --capmap or --no-capmap was given.
+bool check_input_options(const Args& args) {
   const int sources = int(args.positional.size() == 1) + int(args.has("tum")) + int(args.has("scans"));
   if (sources != 1 || args.positional.size() > 1)
     throw UsageError("fvx replay: give one input: a session directory, --tum DIR or --scans GLOB");
@@ -227,32 +227,25 @@ int run_replay(const Args& args) {
   if (args.has("associations") && !args.has("tum")) throw UsageError("fvx replay: --associations goes with --tum");
   if (args.has("scans") && !args.has("trajectory"))
     throw UsageError("fvx replay: --scans needs --trajectory (the logged poses)");
-  const bool session_input = args.positional.size() == 1;
-  if (session_input && args.has("trajectory"))
+  if (args.positional.size() == 1 && args.has("trajectory"))
     throw UsageError("fvx replay: a session has its poses in its manifest; --trajectory goes with --scans or --tum");
   // The arm: --capmap or --no-capmap; without either, a session's own, else free-flying.
   const bool arm_flags = args.has("capmap") || args.has("no-capmap");
   if (arm_flags) check_arm_options(args, "fvx replay");
   if (!args.has("capmap") && (args.has("base") || args.has("arm")))
     throw UsageError("fvx replay: --base and --arm go with --capmap");
-  const Format format = parse_format(args);
-  const int from = int(args.integer("from", 1, 1, 1000000));
-  const int to = int(args.integer("to", 0, 1, 1000000));
-  if (args.has("to") && to < from) throw UsageError("fvx replay: --to " + std::to_string(to) + " is before --from");
   const std::filesystem::path dir = args.get("output");
-  if (std::filesystem::exists(dir) &&
-      (!std::filesystem::is_directory(dir) || !std::filesystem::is_empty(dir)))
+  if (std::filesystem::exists(dir) && (!std::filesystem::is_directory(dir) || !std::filesystem::is_empty(dir)))
     throw UsageError("fvx replay: -o " + dir.string() + " exists and is not an empty folder; nothing is overwritten");
+  return arm_flags;
+}
 
-  session::ReplayConfig config;
+/// The flags over what the recording says, then the whole config checked. Returns the target
+/// size, metres.
+double apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_inputs, int from, int to,
+                 session::ReplayConfig& config) {
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
-  ArmInputs arm_inputs;
-  const Inputs inputs = session_input ? session_inputs(args, arm_flags, config, arm_inputs)
-                                     : recorded_inputs(args, arm_flags, config, arm_inputs);
-  const std::vector<session::RecordedScan>& scans = inputs.scans;
-  const std::string& source_json = inputs.source;
-  // Flags over the recording.
   nc.strategy = parse_strategy_option(args, "replay", nc.strategy);
   if (args.has("register")) pc.register_scans = true;
   if (args.has("no-register")) pc.register_scans = false;
@@ -272,16 +265,75 @@ int run_replay(const Args& args) {
     throw UsageError("fvx replay: --strategy exhaustive enumerates a capability map: give --capmap");
   if (args.has("to")) config.last_view = to - 1;
   config.search_every = int(args.integer("search-every", 1, 0, 1000000));
-  if (from > int(scans.size()))
+  if (from > int(inputs.scans.size()))
     throw UsageError("fvx replay: --from " + std::to_string(from) + ": the recording has " +
-                     std::to_string(scans.size()) + " views");
-  {
-    const auto problems = config.validate();
-    throw_if_problems("fvx replay", problems);
-  }
+                     std::to_string(inputs.scans.size()) + " views");
+  throw_if_problems("fvx replay", config.validate());
+  return target_size_m;
+}
 
-  std::filesystem::create_directories(dir / "maps");
-  std::filesystem::create_directories(dir / "reports");
+/// The table row of a view (revealed and next_* come with the next view).
+Row row_of(const session::ReplayView& v, double R) {
+  const pipeline::StepResult& step = v.step;
+  Row row;
+  row.view = v.view;
+  row.scan = v.name;
+  row.registration_s = step.timing.registration_s;
+  row.integration_s = step.timing.integration_s;
+  row.frontiers_voids_s = step.timing.frontiers_voids_s;
+  row.search_s = step.timing.search_s;
+  row.searched = step.searched;
+  row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
+  row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
+  if (step.registration) row.fitness_m = step.registration->fitness_rmse_m;
+  row.map_void_cells = step.analysis.void_cells.size();
+  row.known_dm3 = frontier_voids::to_dm3(v.known_m3);
+  row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
+  return row;
+}
+
+/// The view's report: its analysis, next best views, pose and table row.
+void write_view_report(const std::string& dir, const session::ReplayView& v, const Row& row, double R,
+                       const std::vector<std::string>& joint_names, nbv::Strategy strategy, const std::string& source) {
+  const pipeline::StepResult& step = v.step;
+  Json report = new_report("replay");
+  report["inputs"] = {{"source", source}, {"view", v.view + 1}, {"scan", v.name}};
+  Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, strategy, true);
+  results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
+  results["chosen_rank"] = v.chosen ? Json(*v.chosen + 1) : Json(nullptr);
+  results["row"] = row_json(row);
+  report["results"] = results;
+  report["warnings"] = step.analysis.warnings;
+  write_report(report, dir + "/reports/" + session::view_file_name(v.view, ".json"));
+}
+
+/// Known and void volume after each view, as a line plot.
+void write_volume_plot(const std::string& path, const std::vector<Row>& shown) {
+  std::vector<double> known, voids;
+  for (const Row& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
+  io::write_line_plot_png(path, "fvx replay: known and void volume in the search space after each view", "view",
+                          "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
+}
+
+}  // namespace
+
+int run_replay(const Args& args) {
+  const bool arm_flags = check_input_options(args);
+  const Format format = parse_format(args);
+  const int from = int(args.integer("from", 1, 1, 1000000));
+  const int to = int(args.integer("to", 0, 1, 1000000));
+  if (args.has("to") && to < from) throw UsageError("fvx replay: --to " + std::to_string(to) + " is before --from");
+  const std::filesystem::path dir = args.get("output");
+
+  session::ReplayConfig config;
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  ArmInputs arm_inputs;
+  const Inputs inputs = args.positional.size() == 1 ? session_inputs(args, arm_flags, config, arm_inputs)
+                                                    : recorded_inputs(args, arm_flags, config, arm_inputs);
+  const std::vector<session::RecordedScan>& scans = inputs.scans;
+  const double target_size_m = apply_flags(args, inputs, arm_inputs, from, to, config);
+  for (const char* sub : {"maps", "reports"}) std::filesystem::create_directories(dir / sub);
   const double R = pc.resolution_m;
   const std::vector<std::string> joint_names =
       arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
@@ -295,38 +347,14 @@ int run_replay(const Args& args) {
       if (view + 1 >= from) state.map.save((dir / "maps" / session::view_file_name(view, ".ot")).string());
     };
     session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
-      const pipeline::StepResult& step = v.step;
       if (!rows.empty()) {
         rows.back().revealed = v.revealed_void_cells;
         rows.back().next_m = v.from_choice_m;
         rows.back().next_deg = v.from_choice_deg;
       }
-      Row row;
-      row.view = v.view;
-      row.scan = v.name;
-      row.registration_s = step.timing.registration_s;
-      row.integration_s = step.timing.integration_s;
-      row.frontiers_voids_s = step.timing.frontiers_voids_s;
-      row.search_s = step.timing.search_s;
-      row.searched = step.searched;
-      row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
-      row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
-      if (step.registration) row.fitness_m = step.registration->fitness_rmse_m;
-      row.map_void_cells = step.analysis.void_cells.size();
-      row.known_dm3 = frontier_voids::to_dm3(v.known_m3);
-      row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
+      const Row row = row_of(v, R);
       rows.push_back(row);
-      if (v.view + 1 >= from) {
-        Json report = new_report("replay");
-        report["inputs"] = {{"source", source_json}, {"view", v.view + 1}, {"scan", v.name}};
-        Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
-        results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
-        results["chosen_rank"] = v.chosen ? Json(*v.chosen + 1) : Json(nullptr);
-        results["row"] = row_json(row);
-        report["results"] = results;
-        report["warnings"] = step.analysis.warnings;
-        write_report(report, (dir / "reports" / session::view_file_name(v.view, ".json")).string());
-      }
+      if (v.view + 1 >= from) write_view_report(dir.string(), v, row, R, joint_names, nc.strategy, inputs.source);
       progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
                       std::to_string(row.map_void_cells) + " void cells, best view sees " +
                       std::to_string(row.void_cells));
@@ -340,13 +368,7 @@ int run_replay(const Args& args) {
   std::vector<Row> shown;
   for (const Row& r : rows)
     if (r.view + 1 >= from) shown.push_back(r);
-  if (!shown.empty()) {
-    std::vector<double> known, voids;
-    for (const Row& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
-    io::write_line_plot_png((dir / "volumes.png").string(),
-                            "fvx replay: known and void volume in the search space after each view", "view",
-                            "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
-  }
+  if (!shown.empty()) write_volume_plot((dir / "volumes.png").string(), shown);
   if (format == Format::json) {
     Json report = new_report("replay");
     report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"resolution_m", R},
@@ -355,7 +377,7 @@ int run_replay(const Args& args) {
                         {"target_size_m", target_size_m},
                         {"seed", nc.seed}, {"sensor", depth_camera_json(nc.sensor)}};
     report["config"].update(accumulation_json(nc));
-    report["inputs"] = {{"source", source_json}, {"views", scans.size()},
+    report["inputs"] = {{"source", inputs.source}, {"views", scans.size()},
                         {"capmap_urdf_hash", arm_inputs.capability_map
                                                  ? Json(arm_inputs.capability_map->header().urdf_hash)
                                                  : Json(nullptr)}};
