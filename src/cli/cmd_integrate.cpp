@@ -194,6 +194,16 @@ pipeline::Config step_config(const Options& o, double resolution_m) {
   return c;
 }
 
+/// Fails before any work if the map cannot be written there, or is not a .bt or .ot name.
+void check_output(const std::string& output_path) {
+  const auto output_dir = std::filesystem::path(output_path).parent_path();
+  if (!output_dir.empty() && !std::filesystem::is_directory(output_dir))
+    throw FileError(output_path, "cannot write: folder '" + output_dir.string() + "' does not exist");
+  const std::string ext = lowercase_extension(output_path);
+  if (ext != ".bt" && ext != ".ot")
+    throw UsageError("fvx integrate: --output " + output_path + ": expected a .bt or .ot file name");
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -209,15 +219,7 @@ int run_integrate(const Args& args) {
     throw UsageError("fvx integrate: --resolution " + std::to_string(o.resolution_m) +
                      " differs from the resolution of --map " + o.map_path + " (" +
                      std::to_string(map.resolution_m()) + "); leave --resolution out");
-  // Fail before any work if the output cannot be written.
-  const auto output_dir = std::filesystem::path(o.output_path).parent_path();
-  if (!output_dir.empty() && !std::filesystem::is_directory(output_dir))
-    throw FileError(o.output_path, "cannot write: folder '" + output_dir.string() + "' does not exist");
-  {
-    const std::string ext = lowercase_extension(o.output_path);
-    if (ext != ".bt" && ext != ".ot")
-      throw UsageError("fvx integrate: --output " + o.output_path + ": expected a .bt or .ot file name");
-  }
+  check_output(o.output_path);
 
   Json report = new_report("integrate");
   report["config"] = config_json(o, map);

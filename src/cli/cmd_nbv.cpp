@@ -240,6 +240,40 @@ nbv::Config parse_search_options(const Args& args) {
   return config;
 }
 
+/// The effective search settings, as the report echoes them.
+Json config_json(const nbv::Config& config, double target_size_m, int void_width,
+                 const std::optional<Eigen::AlignedBox3d>& bounds, const voids::ClusterConfig& cluster_config,
+                 const std::optional<Eigen::Isometry3d>& T_world_base) {
+  return {{"strategy", nbv::to_string(config.strategy)},
+          {"sensor", depth_camera_json(config.sensor)},
+          {"rays", {config.ray_cols, config.ray_rows}},
+          {"valid_poses", config.valid_poses},
+          {"target_size_m", target_size_m},
+          {"min_void_width_cells", void_width},
+          {"orientations_per_cell", config.orientations_per_cell},
+          {"jitter_deg", config.jitter_deg},
+          {"clearance_m", config.clearance_m},
+          {"min_separation_m", config.min_separation_m},
+          {"refine_poses", config.refine_poses},
+          {"refine_step_m", config.refine_step_m},
+          {"refine_max_m", config.refine_max_m},
+          {"polish_poses", config.polish_poses},
+          {"polish_rolls", config.polish_rolls},
+          {"climb_rounds", config.climb_rounds},
+          {"climb_step_m", config.climb_step_m},
+          {"climb_angle_deg", config.climb_angle_deg},
+          {"exhaustive_rolls", config.exhaustive_rolls},
+          {"count_near_void_cells", config.count_near_void_cells},
+          {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
+          {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
+          {"min_fit_score", cluster_config.min_fit_score},
+          {"seed", config.seed},
+          {"accumulation", utility::to_string(config.accumulation)},
+          {"max_utility_vectors", config.max_utility_vectors},
+          {"top", config.top},
+          {"T_world_base", T_world_base ? pose_json(*T_world_base) : Json(nullptr)}};
+}
+
 }  // namespace
 
 Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, double R,
@@ -315,34 +349,8 @@ int run_nbv(const Args& args) {
 
   const double R = map.resolution_m();
   Json report = new_report("nbv");
-  report["config"] = {{"strategy", nbv::to_string(config.strategy)},
-                      {"sensor", depth_camera_json(config.sensor)},
-                      {"rays", {config.ray_cols, config.ray_rows}},
-                      {"valid_poses", config.valid_poses},
-                      {"target_size_m", target_size_m},
-                      {"min_void_width_cells", void_width},
-                      {"orientations_per_cell", config.orientations_per_cell},
-                      {"jitter_deg", config.jitter_deg},
-                      {"clearance_m", config.clearance_m},
-                      {"min_separation_m", config.min_separation_m},
-                      {"refine_poses", config.refine_poses},
-                      {"refine_step_m", config.refine_step_m},
-                      {"refine_max_m", config.refine_max_m},
-                      {"polish_poses", config.polish_poses},
-                      {"polish_rolls", config.polish_rolls},
-                      {"climb_rounds", config.climb_rounds},
-                      {"climb_step_m", config.climb_step_m},
-                      {"climb_angle_deg", config.climb_angle_deg},
-                      {"exhaustive_rolls", config.exhaustive_rolls},
-                      {"count_near_void_cells", config.count_near_void_cells},
-                      {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
-                      {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
-                      {"min_fit_score", cluster_config.min_fit_score},
-                      {"seed", config.seed},
-                      {"accumulation", utility::to_string(config.accumulation)},
-                      {"max_utility_vectors", config.max_utility_vectors},
-                      {"top", config.top},
-                      {"T_world_base", reach ? pose_json(T_world_base) : Json(nullptr)}};
+  report["config"] = config_json(config, target_size_m, void_width, bounds, cluster_config,
+                                 reach ? std::optional<Eigen::Isometry3d>(T_world_base) : std::nullopt);
   report["inputs"] = {{"map", args.positional[0]},
                       {"resolution_m", R},
                       {"capmap", capmap_json(args, arm_inputs)},
