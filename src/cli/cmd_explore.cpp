@@ -118,19 +118,8 @@ Json row_json(const Row& r) {
   return j;
 }
 
-}  // namespace
-
-int run_explore(const Args& args) {
-  if (args.positional.size() != 1)
-    throw UsageError("fvx explore: give one scene (a mesh file or builtin:NAME), got " +
-                     std::to_string(args.positional.size()));
-  if (!args.has("output")) throw UsageError("fvx explore: -o/--output SESSION_DIR is required");
-  check_arm_options(args, "fvx explore");
-  const Format format = parse_format(args);
-  const std::filesystem::path dir = args.get("output");
-  if (std::filesystem::exists(dir) && !(std::filesystem::is_directory(dir) && std::filesystem::is_empty(dir)))
-    throw UsageError("fvx explore: -o " + dir.string() + " exists and is not an empty folder; nothing is overwritten");
-
+/// The loop's settings from the options (all but the scene's: bounds and start come later).
+session::ExploreConfig parse_config(const Args& args, double& target_size_m) {
   session::ExploreConfig config;
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
@@ -147,7 +136,7 @@ int run_explore(const Args& args) {
   nc.count_near_void_cells = args.has("near-voids");
   pc.clusters.seed = nc.seed;
   pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
-  const double target_size_m = parse_target_size(args, 0.0);
+  target_size_m = parse_target_size(args, 0.0);
   pc.min_void_width_cells = voids::void_width_for_target(target_size_m, pc.resolution_m);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
@@ -163,6 +152,11 @@ int run_explore(const Args& args) {
   pc.register_scans = args.has("register") || config.pose_noise_m > 0 || config.pose_noise_deg > 0;
   if (nc.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
     throw UsageError("fvx explore: --strategy exhaustive enumerates a capability map: give --capmap");
+  return config;
+}
+
+/// The virtual Kinect of the run: the search's sensor, seeded, with the depth noise asked for.
+sim::SensorConfig render_config_of(const Args& args, const nbv::Config& nc) {
   sim::SensorConfig render_config;
   render_config.intrinsics = nc.sensor.intrinsics;
   render_config.depth_min_m = nc.sensor.depth_min_m;
@@ -171,61 +165,19 @@ int run_explore(const Args& args) {
   render_config.threads = nc.threads;
   render_config.noise_m_per_m2 = parse_depth_noise(args);
 
-  // Inputs: the scene, the arm; then the start pose against both.
-  const sim::Scene scene = scene_from(args.positional[0], args);
-  ArmInputs arm_inputs;
-  load_arm_inputs(args, "fvx explore", arm_inputs);
-  pc.bounds_m = parse_bounds(args);
-  if (!pc.bounds_m) pc.bounds_m = scene.info.search_space;
-  if (!pc.bounds_m)
-    throw UsageError("fvx explore: the scene has no search space (sidecar search_space); give --bounds");
-  const Eigen::AlignedBox3d S = *pc.bounds_m;
-  config.T_world_sensor_start =
-      args.has("start") ? parse_look_at(args.get("start"), "--start")
-                        : session::default_start(arm_inputs.reach, arm_inputs.T_world_base, S,
-                                                 S.center() - Eigen::Vector3d(0, 0, 0.1));
-  {
-    const auto problems = config.validate();
-    throw_if_problems("fvx explore", problems);
-  }
-  const auto caster = sim::make_ray_caster(scene.mesh);
-  const double R = pc.resolution_m;
-  const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
-  if (sim::inside_solid(*caster, eye.cast<float>()))
-    throw Error("fvx explore: the start pose (" + fixed(eye.x(), 3) + ", " + fixed(eye.y(), 3) + ", " +
-                fixed(eye.z(), 3) + ") is inside an obstacle of the scene");
-  // Ground truth around S and over every place the sensor can be (the start, the arm's
-  // capability map): rays of the observability check start there.
-  std::vector<Eigen::Vector3d> sensor_positions = {eye};
-  if (arm_inputs.reach)
-    for (const auto& entry : arm_inputs.capability_map->voxels())
-      sensor_positions.push_back(arm_inputs.T_world_base * arm_inputs.capability_map->center_of(entry.first));
-  session::start_configuration(arm_inputs.reach, config.T_world_sensor_start, config.seed);  // throws if unreachable
-  Progress progress(args.has("progress"));
-  progress.update("fvx explore: ground truth of the search space");
-  const sim::GroundTruth gt(scene.mesh, *caster, R, sim::exploration_region(S, sensor_positions));
-  std::optional<Eigen::AlignedBox3d> target;
-  if (scene.info.target) target = scene.info.target->box;
-  sim::ExplorationScore score(gt, S, target);
-  if (arm_inputs.reach) {
-    // Observable = what some pose of the arm's capability map would reveal (coarse rays:
-    // the union over thousands of poses fills their gaps).
-    progress.update("fvx explore: the space the arm can observe at all (ground truth)");
-    const std::vector<Eigen::Isometry3d> poses =
-        session::capmap_view_poses(*arm_inputs.reach, [&](const Eigen::Vector3d& p) {
-          const Eigen::Vector3i cell = gt.cell_of(p);
-          return gt.contains(cell) && gt.solid(cell);
-        });
-    score.restrict_to_views(gt, poses, viewpoints::ray_fan(nc.sensor.intrinsics, 20, 15), nc.sensor.depth_min_m,
-                            nc.sensor.depth_max_m, nc.threads);
-  }
+  return render_config;
+}
 
-  // The session directory: created only now that every input is good.
+/// What the session's manifest records of the run.
+session::Manifest manifest_of(const Args& args, const session::ExploreConfig& config, const ArmInputs& arm_inputs,
+                              double target_size_m) {
+  const pipeline::Config& pc = config.pipeline;
+  const nbv::Config& nc = pc.nbv;
   session::Manifest manifest;
   manifest.created_by = std::string("fvx explore ") + version();
   manifest.scene = args.positional[0];
-  manifest.resolution_m = R;
-  manifest.search_space_m = S;
+  manifest.resolution_m = pc.resolution_m;
+  manifest.search_space_m = pc.bounds_m;
   manifest.view_bounds_m = nc.view_bounds_m;
   if (arm_inputs.reach) {
     manifest.T_world_base = arm_inputs.T_world_base;
@@ -242,52 +194,182 @@ int run_explore(const Args& args) {
   manifest.target_size_m = target_size_m;
   manifest.accumulation = utility::to_string(nc.accumulation);
   manifest.max_utility_vectors = nc.max_utility_vectors;
-  session::Recorder recorder(dir.string(), std::move(manifest), nc.sensor);
+  return manifest;
+}
 
-  const std::vector<std::string> joint_names =
-      arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
-  const session::Sensor kinect = [&](const Eigen::Isometry3d& T_world_sensor, int view) {
-    const sim::Frame frame = sim::render(*caster, T_world_sensor, render_config, std::uint64_t(view));
+/// The table row of a view, judged against the ground truth (revealed comes with the next).
+Row row_of(const session::ViewRecord& v, const map::OccupancyMap& map, const sim::GroundTruth& gt,
+           const sim::ExplorationScore& score, const Eigen::AlignedBox3d& S) {
+  const pipeline::StepResult& step = v.step;
+  const double R = map.resolution_m();
+  Row row;
+  row.view = v.view;
+  row.scan_s = v.scan_s;
+  row.registration_s = step.timing.registration_s;
+  row.integration_s = step.timing.integration_s;
+  row.frontiers_voids_s = step.timing.frontiers_voids_s;
+  row.search_s = step.timing.search_s;
+  row.map_void_cells = step.analysis.void_cells.size();
+  row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
+  row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
+  row.known_fraction = score.known_fraction(map);
+  row.target_cells = score.target_cells_seen(map);
+  row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
+  if (v.chosen) row.u_in_solid = gt.solid_among(step.nbv.views[*v.chosen].seen_void_cells);
+  row.free_in_solid = gt.free_in_solid(map, S);
+  if (step.registration) row.registration_fitness_m = step.registration->fitness_rmse_m;
+  return row;
+}
+
+/// A view's report: its analysis, next best views, poses and table row.
+Json view_report(const std::string& scene, const session::ViewRecord& v, const session::ManifestView& files,
+                 const Row& row, double R, const std::vector<std::string>& joint_names, nbv::Strategy strategy) {
+  const pipeline::StepResult& step = v.step;
+  Json report = new_report("explore");
+  report["inputs"] = {{"scene", scene}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}};
+  Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, strategy, true);
+  results["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
+  results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
+  results["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
+  results["row"] = row_json(row);
+  report["results"] = results;
+  report["warnings"] = step.analysis.warnings;
+  return report;
+}
+
+/// The run's report (--format json): the effective settings, the inputs, every row and how
+/// the loop ended.
+Json run_report(const Args& args, const session::ExploreConfig& config, double target_size_m,
+                const ArmInputs& arm_inputs, const std::string& dir, const session::ExploreResult& result,
+                const sim::ExplorationScore& score, const std::vector<Row>& rows) {
+  const pipeline::Config& pc = config.pipeline;
+  const nbv::Config& nc = pc.nbv;
+  Json report = new_report("explore");
+  report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"max_views", config.max_views},
+                      {"resolution_m", pc.resolution_m}, {"bounds_m", bounds_json(*pc.bounds_m)},
+                      {"pose_noise", {{"sigma_m", config.pose_noise_m}, {"sigma_deg", config.pose_noise_deg}}},
+                      {"registration", pc.register_scans}, {"seed", config.seed},
+                      {"target_size_m", target_size_m}, {"min_void_width_cells", pc.min_void_width_cells},
+                      {"sensor", depth_camera_json(nc.sensor)}};
+  report["config"].update(accumulation_json(nc));
+  report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
+                      {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
+  Json jrows = Json::array();
+  for (const Row& r : rows) jrows.push_back(row_json(r));
+  report["results"] = {{"session", dir}, {"views", result.views}, {"end", result.end},
+                       {"utility_exhausted", result.utility_exhausted},
+                       {"observable_cells", score.observable_cells()},
+                       {"observable_target_cells",
+                        score.observable_target_cells() ? Json(*score.observable_target_cells()) : Json(nullptr)},
+                       {"rows", jrows}};
+  report["warnings"] = Json::array();
+  return report;
+}
+
+/// One scene, an output folder that is new or empty, arm options that go together.
+void check_inputs_and_output(const Args& args) {
+  if (args.positional.size() != 1)
+    throw UsageError("fvx explore: give one scene (a mesh file or builtin:NAME), got " +
+                     std::to_string(args.positional.size()));
+  if (!args.has("output")) throw UsageError("fvx explore: -o/--output SESSION_DIR is required");
+  check_arm_options(args, "fvx explore");
+  const std::filesystem::path dir = args.get("output");
+  if (std::filesystem::exists(dir) && !(std::filesystem::is_directory(dir) && std::filesystem::is_empty(dir)))
+    throw UsageError("fvx explore: -o " + dir.string() + " exists and is not an empty folder; nothing is overwritten");
+}
+
+/// Every place the sensor can be: the start and, with an arm, its capability map's voxels.
+std::vector<Eigen::Vector3d> sensor_positions(const Eigen::Vector3d& start, const ArmInputs& arm_inputs) {
+  std::vector<Eigen::Vector3d> positions = {start};
+  if (arm_inputs.reach)
+    for (const auto& entry : arm_inputs.capability_map->voxels())
+      positions.push_back(arm_inputs.T_world_base * arm_inputs.capability_map->center_of(entry.first));
+  return positions;
+}
+
+/// The virtual Kinect: a frame rendered at the true pose, seeded by the view.
+session::Sensor kinect_of(const sim::RayCaster& caster, const sim::SensorConfig& render_config) {
+  return [&caster, render_config](const Eigen::Isometry3d& T_world_sensor, int view) {
+    const sim::Frame frame = sim::render(caster, T_world_sensor, render_config, std::uint64_t(view));
     std::vector<Eigen::Vector3d> points;
     points.reserve(frame.points_sensor.size());
     for (const auto& p : frame.points_sensor) points.push_back(p.cast<double>());
     return points;
   };
+}
+
+/// Observable = what some pose of the arm's capability map would reveal (coarse rays: the
+/// union over thousands of poses fills their gaps).
+void restrict_to_arm(const nbv::Reach& reach, const sim::GroundTruth& gt, const nbv::Config& nc,
+                     sim::ExplorationScore& score) {
+  const std::vector<Eigen::Isometry3d> poses = session::capmap_view_poses(reach, [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3i cell = gt.cell_of(p);
+    return gt.contains(cell) && gt.solid(cell);
+  });
+  score.restrict_to_views(gt, poses, viewpoints::ray_fan(nc.sensor.intrinsics, 20, 15), nc.sensor.depth_min_m,
+                          nc.sensor.depth_max_m, nc.threads);
+}
+
+}  // namespace
+
+int run_explore(const Args& args) {
+  check_inputs_and_output(args);
+  const Format format = parse_format(args);
+  const std::filesystem::path dir = args.get("output");
+  double target_size_m = 0.0;
+  session::ExploreConfig config = parse_config(args, target_size_m);
+  pipeline::Config& pc = config.pipeline;
+  nbv::Config& nc = pc.nbv;
+  const sim::SensorConfig render_config = render_config_of(args, nc);
+  // Inputs: the scene, the arm; then the start pose against both.
+  const sim::Scene scene = scene_from(args.positional[0], args);
+  ArmInputs arm_inputs;
+  load_arm_inputs(args, "fvx explore", arm_inputs);
+  pc.bounds_m = parse_bounds(args);
+  if (!pc.bounds_m) pc.bounds_m = scene.info.search_space;
+  if (!pc.bounds_m)
+    throw UsageError("fvx explore: the scene has no search space (sidecar search_space); give --bounds");
+  const Eigen::AlignedBox3d S = *pc.bounds_m;
+  config.T_world_sensor_start =
+      args.has("start") ? parse_look_at(args.get("start"), "--start")
+                        : session::default_start(arm_inputs.reach, arm_inputs.T_world_base, S,
+                                                 S.center() - Eigen::Vector3d(0, 0, 0.1));
+  throw_if_problems("fvx explore", config.validate());
+  const auto caster = sim::make_ray_caster(scene.mesh);
+  const double R = pc.resolution_m;
+  const Eigen::Vector3d eye = config.T_world_sensor_start.translation();
+  if (sim::inside_solid(*caster, eye.cast<float>()))
+    throw Error("fvx explore: the start pose (" + fixed(eye.x(), 3) + ", " + fixed(eye.y(), 3) + ", " +
+                fixed(eye.z(), 3) + ") is inside an obstacle of the scene");
+  // Ground truth around S and over every place the sensor can be (the start, the arm's
+  // capability map): rays of the observability check start there.
+  session::start_configuration(arm_inputs.reach, config.T_world_sensor_start, config.seed);  // throws if unreachable
+  Progress progress(args.has("progress"));
+  progress.update("fvx explore: ground truth of the search space");
+  const sim::GroundTruth gt(scene.mesh, *caster, R, sim::exploration_region(S, sensor_positions(eye, arm_inputs)));
+  std::optional<Eigen::AlignedBox3d> target;
+  if (scene.info.target) target = scene.info.target->box;
+  sim::ExplorationScore score(gt, S, target);
+  if (arm_inputs.reach) {
+    progress.update("fvx explore: the space the arm can observe at all (ground truth)");
+    restrict_to_arm(*arm_inputs.reach, gt, nc, score);
+  }
+  // The session directory: created only now that every input is good.
+  session::Recorder recorder(dir.string(), manifest_of(args, config, arm_inputs, target_size_m), nc.sensor);
+
+  const std::vector<std::string> joint_names =
+      arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
+  const session::Sensor kinect = kinect_of(*caster, render_config);
   std::vector<Row> rows;
   const session::ExploreResult result = session::explore(
       kinect, arm_inputs.reach, config, [&](const session::ViewRecord& v, const pipeline::State& state) {
-        const pipeline::StepResult& step = v.step;
-        Row row;
-        row.view = v.view;
-        row.scan_s = v.scan_s;
-        row.registration_s = step.timing.registration_s;
-        row.integration_s = step.timing.integration_s;
-        row.frontiers_voids_s = step.timing.frontiers_voids_s;
-        row.search_s = step.timing.search_s;
-        row.map_void_cells = step.analysis.void_cells.size();
-        row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
-        row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
-        row.known_fraction = score.known_fraction(state.map);
-        row.target_cells = score.target_cells_seen(state.map);
-        row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
-        if (v.chosen) row.u_in_solid = gt.solid_among(step.nbv.views[*v.chosen].seen_void_cells);
-        row.free_in_solid = gt.free_in_solid(state.map, S);
-        if (step.registration) row.registration_fitness_m = step.registration->fitness_rmse_m;
+        const Row row = row_of(v, state.map, gt, score, S);
         if (!rows.empty()) rows.back().revealed = v.revealed_void_cells;
         rows.push_back(row);
 
         // The view's files, then the manifest that lists them.
-        const session::ManifestView files = recorder.files_of(v);
-        Json report = new_report("explore");
-        report["inputs"] = {{"scene", args.positional[0]}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}};
-        Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, nc.strategy, true);
-        results["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
-        results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
-        results["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
-        results["row"] = row_json(row);
-        report["results"] = results;
-        report["warnings"] = step.analysis.warnings;
-        recorder.add(v, state.map, report_text(report));
+        recorder.add(v, state.map,
+                     report_text(view_report(args.positional[0], v, recorder.files_of(v), row, R, joint_names, nc.strategy)));
         progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.map_void_cells) +
                         " void cells, next view sees " + std::to_string(row.void_cells) + ", " +
                         fixed(100.0 * row.known_fraction, 1) + " % known" + (row.target_seen ? ", target seen" : ""));
@@ -295,26 +377,7 @@ int run_explore(const Args& args) {
   progress.finish();
 
   if (format == Format::json) {
-    Json report = new_report("explore");
-    report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"max_views", config.max_views},
-                        {"resolution_m", R}, {"bounds_m", bounds_json(S)},
-                        {"pose_noise", {{"sigma_m", config.pose_noise_m}, {"sigma_deg", config.pose_noise_deg}}},
-                        {"registration", pc.register_scans}, {"seed", config.seed},
-                        {"target_size_m", target_size_m}, {"min_void_width_cells", pc.min_void_width_cells},
-                        {"sensor", depth_camera_json(nc.sensor)}};
-    report["config"].update(accumulation_json(nc));
-    report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
-                        {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
-    Json jrows = Json::array();
-    for (const Row& r : rows) jrows.push_back(row_json(r));
-    report["results"] = {{"session", dir.string()}, {"views", result.views}, {"end", result.end},
-                         {"utility_exhausted", result.utility_exhausted},
-                         {"observable_cells", score.observable_cells()},
-                         {"observable_target_cells",
-                          score.observable_target_cells() ? Json(*score.observable_target_cells()) : Json(nullptr)},
-                         {"rows", jrows}};
-    report["warnings"] = Json::array();
-    write_report(report, "");
+    write_report(run_report(args, config, target_size_m, arm_inputs, dir.string(), result, score, rows), "");
   } else {
     std::vector<std::vector<std::string>> table;
     for (const Row& r : rows) table.push_back(cells(r));

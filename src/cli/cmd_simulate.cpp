@@ -95,6 +95,42 @@ void write_tum(const std::string& path, const std::vector<Eigen::Isometry3d>& po
   });
 }
 
+/// The scene's ground truth over --bounds (default: the scene's search space, else its
+/// bounds) as a map at `path`, and what the report says of it.
+Json write_ground_truth(const Args& args, const sim::Scene& scene, const sim::RayCaster& caster, double resolution_m) {
+  Eigen::AlignedBox3d region;
+  if (args.has("bounds")) {
+    const auto b = parse_double_list(args.get("bounds"), "--bounds (x0,y0,z0,x1,y1,z1)", 6);
+    region = Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
+    if (!(region.min().array() < region.max().array()).all())
+      throw UsageError("--bounds: the minimum must be below the maximum on every axis");
+  } else if (scene.info.search_space) {
+    region = *scene.info.search_space;
+  } else {
+    const Eigen::AlignedBox3f b = scene.mesh.bounds();
+    region = Eigen::AlignedBox3d(b.min().cast<double>(), b.max().cast<double>());
+  }
+  const sim::GroundTruth gt(scene.mesh, caster, resolution_m, region);
+  const std::string path = args.get("ground-truth");
+  gt.to_map().save(path);
+  const double cell_m3 = std::pow(resolution_m, 3);
+  Json containers = Json::array();
+  for (const auto& c : scene.info.containers)
+    containers.push_back({{"name", c.name}, {"box", box_json(c.box)},
+                          {"free_volume_dm3", gt.free_volume_m3(c.box) * 1e3}});
+  Json result = {{"file", path},
+                 {"resolution_m", resolution_m},
+                 {"region", box_json(region)},
+                 {"solid_cells", gt.solid_cells()},
+                 {"free_cells", gt.free_cells()},
+                 {"solid_volume_m3", double(gt.solid_cells()) * cell_m3},
+                 {"free_volume_m3", double(gt.free_cells()) * cell_m3},
+                 {"containers", containers}};
+  if (scene.info.target)
+    result["target"] = {{"name", scene.info.target->name}, {"box", box_json(scene.info.target->box)}};
+  return result;
+}
+
 }  // namespace
 
 int run_simulate(const Args& args) {
@@ -169,38 +205,8 @@ int run_simulate(const Args& args) {
   }
   report["results"]["frames"] = frames;
 
-  if (args.has("ground-truth")) {
-    Eigen::AlignedBox3d region;
-    if (args.has("bounds")) {
-      const auto b = parse_double_list(args.get("bounds"), "--bounds (x0,y0,z0,x1,y1,z1)", 6);
-      region = Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
-      if (!(region.min().array() < region.max().array()).all())
-        throw UsageError("--bounds: the minimum must be below the maximum on every axis");
-    } else if (scene.info.search_space) {
-      region = *scene.info.search_space;
-    } else {
-      const Eigen::AlignedBox3f b = scene.mesh.bounds();
-      region = Eigen::AlignedBox3d(b.min().cast<double>(), b.max().cast<double>());
-    }
-    const sim::GroundTruth gt(scene.mesh, *caster, resolution_m, region);
-    const std::string path = args.get("ground-truth");
-    gt.to_map().save(path);
-    const double cell_m3 = std::pow(resolution_m, 3);
-    Json containers = Json::array();
-    for (const auto& c : scene.info.containers)
-      containers.push_back({{"name", c.name}, {"box", box_json(c.box)},
-                            {"free_volume_dm3", gt.free_volume_m3(c.box) * 1e3}});
-    report["results"]["ground_truth"] = {{"file", path},
-                                         {"resolution_m", resolution_m},
-                                         {"region", box_json(region)},
-                                         {"solid_cells", gt.solid_cells()},
-                                         {"free_cells", gt.free_cells()},
-                                         {"solid_volume_m3", double(gt.solid_cells()) * cell_m3},
-                                         {"free_volume_m3", double(gt.free_cells()) * cell_m3},
-                                         {"containers", containers}};
-    if (scene.info.target) report["results"]["ground_truth"]["target"] = {{"name", scene.info.target->name},
-                                                                         {"box", box_json(scene.info.target->box)}};
-  }
+  if (args.has("ground-truth"))
+    report["results"]["ground_truth"] = write_ground_truth(args, scene, *caster, resolution_m);
   report["warnings"] = warnings;
   write_report(report, args.has("report") ? args.get("report") : "");
   return 0;

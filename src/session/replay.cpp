@@ -53,13 +53,50 @@ struct InFlight {
   std::future<std::pair<nbv::Result, double>> search;  // and the run, seconds; joined before `out` goes
 };
 
+/// View `view`'s step: its own seed; the search on every search_every-th view.
+pipeline::Config step_config_of(const ReplayConfig& config, int view) {
+  pipeline::Config step = config.pipeline;
+  step.nbv.seed = config.pipeline.nbv.seed + std::uint64_t(view);
+  step.search = config.search_every > 0 && (view + 1) % config.search_every == 0;
+  return step;
+}
+
+/// The scan (logged at `logged`) against the previous view's choice: taken there, the
+/// choice's cells it left unknown are hidden, as in explore (a scan taken elsewhere says
+/// nothing about them); and how far from the choice it was taken.
+void against_choice(const Eigen::Isometry3d& logged, const std::optional<nbv::View>& chosen, pipeline::State& state,
+                    ReplayView& out) {
+  if (!chosen) return;
+  out.at_choice = same_view(logged, chosen->T_world_sensor);
+  if (out.at_choice) pipeline::mark_hidden(state, chosen->seen_void_cells, out.step);
+  out.from_choice_m = (logged.translation() - chosen->T_world_sensor.translation()).norm();
+  out.from_choice_deg = axis_angle_rad(logged, chosen->T_world_sensor) * 180.0 / M_PI;
+}
+
+/// Starts the view's search (when its step searches) on its own thread; the grid is copied
+/// from the map here, so the state may take the next scan meanwhile.
+InFlight launch(const pipeline::State& state, std::unique_ptr<ReplayView> out, const std::optional<nbv::Reach>& reach,
+                const pipeline::Config& step_config) {
+  InFlight f;
+  f.out = std::move(out);
+  if (!step_config.search) return f;
+  const auto t0 = Clock::now();
+  auto search = std::make_shared<nbv::PreparedSearch>(pipeline::prepare_search(state, f.out->step, reach, step_config));
+  f.prepare_s = seconds_since(t0);
+  f.search = std::async(std::launch::async, [search] {
+    const auto t1 = Clock::now();
+    nbv::Result result = search->run();
+    return std::make_pair(std::move(result), seconds_since(t1));
+  });
+  return f;
+}
+
 }  // namespace
 
 void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Reach>& reach, const ReplayConfig& config,
             const std::function<void(int, const pipeline::State&)>& on_map,
             const std::function<void(const ReplayView&)>& on_view) {
-  const auto problems = config.validate();
-  throw_if_problems("replay", problems);
+  throw_if_problems("replay", config.validate());
   const std::size_t count =
       config.last_view < 0 ? scans.size() : std::min(scans.size(), std::size_t(config.last_view) + 1);
 
@@ -106,9 +143,7 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
       throw Error("view " + std::to_string(view) + " (" + scans[i].name + "): " + e.what());
     }
     if (i + 1 < count) next = std::async(std::launch::async, scans[i + 1].load);
-    pipeline::Config step_config = config.pipeline;
-    step_config.nbv.seed = config.pipeline.nbv.seed + std::uint64_t(view);
-    step_config.search = config.search_every > 0 && (view + 1) % config.search_every == 0;
+    const pipeline::Config step_config = step_config_of(config, view);
     auto out = std::make_unique<ReplayView>();
     out->view = view;
     out->name = scans[i].name;
@@ -122,14 +157,7 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
     }
     finish_in_flight();  // the previous view's choice decides what this scan hides
 
-    // The chosen view's cells stay unknown after a scan taken there: hidden, as in explore.
-    // A scan taken elsewhere says nothing about them.
-    out->at_choice = chosen && same_view(logged, chosen->T_world_sensor);
-    if (out->at_choice) pipeline::mark_hidden(state, chosen->seen_void_cells, out->step);
-    if (chosen) {
-      out->from_choice_m = (logged.translation() - chosen->T_world_sensor.translation()).norm();
-      out->from_choice_deg = axis_angle_rad(logged, chosen->T_world_sensor) * 180.0 / M_PI;
-    }
+    against_choice(logged, chosen, state, *out);
     for (const map::VoxelKey& k : previous_voids) out->revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
     previous_voids = out->step.analysis.void_cells;
     taken.push_back(scans[i].T_world_sensor_true.value_or(out->step.T_world_sensor));
@@ -137,19 +165,7 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
     out->void_m3 = double(out->step.analysis.void_cells.size()) * std::pow(config.pipeline.resolution_m, 3);
     on_map(view, state);
 
-    InFlight f;
-    f.out = std::move(out);
-    if (step_config.search) {
-      const auto t0 = Clock::now();
-      auto search = std::make_shared<nbv::PreparedSearch>(pipeline::prepare_search(state, f.out->step, reach, step_config));
-      f.prepare_s = seconds_since(t0);
-      f.search = std::async(std::launch::async, [search] {
-        const auto t1 = Clock::now();
-        nbv::Result result = search->run();
-        return std::make_pair(std::move(result), seconds_since(t1));
-      });
-    }
-    in_flight = std::move(f);
+    in_flight = launch(state, std::move(out), reach, step_config);
   }
   finish_in_flight();
 }
