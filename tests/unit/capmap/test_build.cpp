@@ -109,13 +109,23 @@ TEST(BuildCapabilityMap, SameSeedSameBytesOnAnyThreadCountAndShardsMergeToIt) {
   EXPECT_TRUE(bytes_of(dir / "seed2.fcm") != bytes_of(dir / "one.fcm")) << "the seed changes nothing";
 }
 
-TEST(BuildCapabilityMap, BitsOfTheFvxArmAreConfirmedByIk) {
-  const Arm arm = Arm::from_urdf(std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf",
-                                 {"base_link", "kinect_optical"});
+Arm fvx_arm() {
+  return Arm::from_urdf(std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf",
+                        {"base_link", "kinect_optical"});
+}
+
+/// The fvx arm's map at 15 cm and 50 directions: coarse, built in about a second.
+BuildConfig coarse_fvx_arm_build() {
   BuildConfig config;
   config.voxel_m = 0.15;
   config.directions = 50;
   config.fk_samples = 30000;
+  return config;
+}
+
+TEST(BuildCapabilityMap, BitsOfTheFvxArmAreConfirmedByIk) {
+  const Arm arm = fvx_arm();
+  const BuildConfig config = coarse_fvx_arm_build();
   const CapabilityMap map = build_capability_map(arm, config);
   ASSERT_GT(map.voxel_count(), 100u);
   // Precision: random queries the map calls reachable, checked by IK at the query itself
@@ -144,12 +154,8 @@ TEST(BuildCapabilityMap, BitsOfTheFvxArmAreConfirmedByIk) {
 // same seed gives the same figures, and a map without a bit has no precision query and
 // recall 0.
 TEST(EvaluateCapabilityMap, ABuiltMapIsPreciseAndAnEmptyOneFindsNothing) {
-  const Arm arm = Arm::from_urdf(std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf",
-                                 {"base_link", "kinect_optical"});
-  BuildConfig config;
-  config.voxel_m = 0.15;
-  config.directions = 50;
-  config.fk_samples = 30000;
+  const Arm arm = fvx_arm();
+  const BuildConfig config = coarse_fvx_arm_build();
   const CapabilityMap map = build_capability_map(arm, config);
   const Evaluation e = evaluate(map, arm, 300, 7);
   EXPECT_EQ(e.precision_queries, 300);
