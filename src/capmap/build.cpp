@@ -48,14 +48,12 @@ struct Candidate {
 
 }  // namespace
 
-CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, BuildStats* stats,
-                                   const std::function<void(std::size_t, std::size_t)>& progress,
-                                   const std::atomic<bool>* cancel) {
-  throw_if_problems("capmap build", config.validate());
-  const DirectionSet directions(config.directions);
-  const double v = config.voxel_m;
+namespace {
 
-  // 1. The workspace, from FK samples; voxel centres on the lattice k·v.
+/// Step 1: the map's header; its grid covers the workspace that FK samples reach, voxel
+/// centres on the lattice k·v.
+CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const DirectionSet& directions) {
+  const double v = config.voxel_m;
   std::mt19937_64 rng(mix(config.seed, 1));
   Eigen::AlignedBox3d reach;
   for (std::size_t i = 0; i < config.workspace_samples; ++i) reach.extend(arm.fk(random_configuration(arm, rng)).translation());
@@ -82,38 +80,51 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
   h.shard_index = config.shard_index;
   h.shard_count = config.shard_count;
   h.fvx_version = version();
-  CapabilityMap map(h);
+  return h;
+}
 
-  // This shard's z-slab.
+/// Step 2: the bits to check in this shard's z-slab — every bit (exhaustive), or those the
+/// FK samples propose, each with the first seed configuration that proposed it.
+std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config, const DirectionSet& directions,
+                                      const CapabilityMap& map) {
+  const CapabilityHeader& h = map.header();
   const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
   const std::uint32_t z_begin = h.dims[2] * config.shard_index / config.shard_count;
   const std::uint32_t z_end = h.dims[2] * (config.shard_index + 1) / config.shard_count;
-  auto in_shard = [&](std::int64_t voxel) {
-    const auto z = std::uint32_t(voxel / layer);
-    return z >= z_begin && z < z_end;
-  };
-
-  // 2. Candidates: every bit (exhaustive), or those the FK samples propose, each with the
-  //    first seed configuration that proposed it.
   std::vector<Candidate> candidates;
   if (config.exhaustive) {
     for (std::int64_t voxel = std::int64_t(z_begin) * layer; voxel < std::int64_t(z_end) * layer; ++voxel)
       for (int d = 0; d < directions.size(); ++d) candidates.push_back({voxel, d, {}});
-  } else {
-    std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
-    std::mt19937_64 fk_rng(mix(config.seed, 2));
-    for (std::size_t i = 0; i < config.fk_samples; ++i) {
-      const Eigen::VectorXd q = random_configuration(arm, fk_rng);
-      const Eigen::Isometry3d T = arm.fk(q);
-      const std::int64_t voxel = map.voxel_of(T.translation());
-      if (voxel < 0 || !in_shard(voxel)) continue;
-      // Every direction within the angle tolerance of the sampled one, not only the nearest:
-      // IK may reach each of them, and proposing only the nearest cost 20 % of the recall.
-      for (const int d : directions.within(T.linear() * ac.viewing_axis_sensor, h.angle_tolerance_rad))
-        proposed.emplace(std::make_pair(voxel, d), q);
-    }
-    for (auto& [bit, q] : proposed) candidates.push_back({bit.first, bit.second, std::move(q)});
+    return candidates;
   }
+  std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
+  std::mt19937_64 fk_rng(mix(config.seed, 2));
+  for (std::size_t i = 0; i < config.fk_samples; ++i) {
+    const Eigen::VectorXd q = random_configuration(arm, fk_rng);
+    const Eigen::Isometry3d T = arm.fk(q);
+    const std::int64_t voxel = map.voxel_of(T.translation());
+    if (voxel < 0) continue;
+    const auto z = std::uint32_t(voxel / layer);
+    if (z < z_begin || z >= z_end) continue;
+    // Every direction within the angle tolerance of the sampled one, not only the nearest:
+    // IK may reach each of them, and proposing only the nearest cost 20 % of the recall.
+    for (const int d : directions.within(T.linear() * arm.config().viewing_axis_sensor, h.angle_tolerance_rad))
+      proposed.emplace(std::make_pair(voxel, d), q);
+  }
+  for (auto& [bit, q] : proposed) candidates.push_back({bit.first, bit.second, std::move(q)});
+  return candidates;
+}
+
+}  // namespace
+
+CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, BuildStats* stats,
+                                   const std::function<void(std::size_t, std::size_t)>& progress,
+                                   const std::atomic<bool>* cancel) {
+  throw_if_problems("capmap build", config.validate());
+  const DirectionSet directions(config.directions);
+  CapabilityMap map(header_for(arm, config, directions));
+  const CapabilityHeader& h = map.header();
+  const std::vector<Candidate> candidates = candidates_for(arm, config, directions, map);
 
   // 3. The IK check, on all cores; results land in a per-candidate slot (deterministic).
   IkConfig ik;
