@@ -56,7 +56,7 @@ bench_out="$(mktemp -d)"
 for scene in paper-setting-1 paper-setting-2; do
   for noise in "" "--pose-noise 0.02,2"; do
     "$build/src/fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0 \
-      --arm data/arms/fvx-arm.urdf $noise --format json -o "$bench_out/$scene${noise:+-noisy}" 2>/dev/null |
+      --arm data/arms/fvx-arm.urdf $noise --timing --format json -o "$bench_out/$scene${noise:+-noisy}" 2>/dev/null |
       jq -r --arg name "$scene${noise:+ (pose noise 0.02,2)}" '
         def med: sort | .[(length / 2 | floor)];
         [.results.rows[].timing_s] as $t
@@ -68,7 +68,7 @@ for scene in paper-setting-1 paper-setting-2; do
 done
 echo "== replay: the explore sessions above, from their files (the paper: integration 2.79-4.46 s, search 0.01-99.22 s per view)"
 for scene in paper-setting-1 paper-setting-2; do
-  "$build/src/fvx" replay "$bench_out/$scene" -o "$bench_out/$scene-replay" --format json 2>/dev/null |
+  "$build/src/fvx" replay "$bench_out/$scene" -o "$bench_out/$scene-replay" --timing --format json 2>/dev/null |
     jq -r --arg name "$scene" '
       def med: sort | .[(length / 2 | floor)];
       def r3: . * 1000 | round / 1000;

@@ -16,11 +16,6 @@ std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::str
   return box;
 }
 
-Json bounds_json(const Eigen::AlignedBox3d& b) {
-  if (b.isEmpty()) return nullptr;
-  return {{"min", vec_json(b.min())}, {"max", vec_json(b.max())}};
-}
-
 Json frontier_clusters_json(const std::vector<frontiers::Cluster>& clusters) {
   Json out = Json::array();
   for (const auto& c : clusters)

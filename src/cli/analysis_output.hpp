@@ -13,7 +13,6 @@ namespace fvx::cli {
 /// --bounds x0,y0,z0,x1,y1,z1 (metres; or another option of that form), or empty.
 std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name = "bounds");
 
-Json bounds_json(const Eigen::AlignedBox3d& b);
 Json frontier_clusters_json(const std::vector<frontiers::Cluster>& clusters);
 Json void_clusters_json(const std::vector<voids::VoidCluster>& clusters);
 Json frontier_voids_json(const std::vector<frontier_voids::FrontierVoid>& pairs,

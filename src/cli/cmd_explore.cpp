@@ -16,13 +16,14 @@
 #include "fvx/core/pose.hpp"
 #include "fvx/io/cloud_file.hpp"
 #include "fvx/session/recorder.hpp"
+#include "fvx/session/rows.hpp"
 #include "fvx/session/session.hpp"
 #include "fvx/session/start.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/exploration_score.hpp"
 #include "fvx/viewpoints/fov.hpp"
 #include "fvx/voids/width.hpp"
-#include "nbv_output.hpp"
+#include "session_output.hpp"
 
 namespace fvx::cli {
 
@@ -62,64 +63,20 @@ const CommandSpec kExploreSpec = {
              accumulation_options(),
              depth_camera_options(),
              {
+                 {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
+                                        "byte for byte)"},
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
                  {"help", 'h', nullptr, "show this help"},
              }})};
 
 namespace {
 
-/// One row of the per-view table: the paper's columns, then ground truth.
-struct Row {
-  int view = 0;
-  double scan_s = 0, registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
-  std::size_t void_cells = 0;      ///< the paper's column: U of the chosen next view
-  std::size_t map_void_cells = 0;  ///< every void cell of the map in S
-  double utility_dm3 = 0;          ///< U · R³ in dm³
-  double known_fraction = 0;       ///< of the observable empty space of S
-  std::size_t target_cells = 0;
-  bool target_seen = false;
-  std::optional<std::size_t> revealed;  ///< of this view's void cells, known after the next scan
-  std::size_t u_in_solid = 0;      ///< ground truth: of void_cells, cells inside material
-  std::size_t free_in_solid = 0;   ///< ground truth: free map cells in S inside material
-  std::optional<double> registration_fitness_m;
-};
-
-std::vector<std::string> cells(const Row& r) {
-  return {std::to_string(r.view + 1),
-          fixed(r.integration_s + r.frontiers_voids_s, 3),  // the paper's: octree, frontiers and voids
-          fixed(r.search_s, 3),
-          std::to_string(r.void_cells),
-          fixed(r.utility_dm3, 2),
-          std::to_string(r.map_void_cells),
-          fixed(100.0 * r.known_fraction, 1),
-          r.target_seen ? "yes" : "no",
-          r.revealed ? std::to_string(*r.revealed) : "-",
-          std::to_string(r.u_in_solid)};
-}
-
-const std::vector<std::string> kHeader = {"view",           "integration_s", "search_s",    "void_cells", "utility_dm3",
-                                          "map_void_cells", "known_pct",     "target_seen", "revealed",
-                                          "u_in_solid"};
-
-Json row_json(const Row& r) {
-  Json j = {{"view", r.view + 1},
-            {"timing_s", {{"render", r.scan_s}, {"registration", r.registration_s}, {"integration", r.integration_s},
-                          {"frontiers_voids", r.frontiers_voids_s}, {"search", r.search_s}}},
-            {"void_cells", r.void_cells},
-            {"map_void_cells", r.map_void_cells},
-            {"utility_dm3", r.utility_dm3},
-            {"known_fraction", r.known_fraction},
-            {"target_cells_seen", r.target_cells},
-            {"target_seen", r.target_seen},
-            {"revealed_void_cells", r.revealed ? Json(*r.revealed) : Json(nullptr)},
-            {"void_cells_in_solid", r.u_in_solid},
-            {"free_cells_in_solid", r.free_in_solid},
-            {"registration_fitness_m", r.registration_fitness_m ? Json(*r.registration_fitness_m) : Json(nullptr)}};
-  return j;
-}
+const std::vector<std::string> kColumns = {"view",           "integration_s", "search_s",    "void_cells", "utility_dm3",
+                                           "map_void_cells", "known_pct",     "target_seen", "revealed",
+                                           "u_in_solid"};
 
 /// The loop's settings from the options (all but the scene's: bounds and start come later).
-session::ExploreConfig parse_config(const Args& args, double& target_size_m) {
+session::ExploreConfig parse_config(const Args& args) {
   session::ExploreConfig config;
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
@@ -136,8 +93,7 @@ session::ExploreConfig parse_config(const Args& args, double& target_size_m) {
   nc.count_near_void_cells = args.has("near-voids");
   pc.clusters.seed = nc.seed;
   pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
-  target_size_m = parse_target_size(args, 0.0);
-  pc.min_void_width_cells = voids::void_width_for_target(target_size_m, pc.resolution_m);
+  pc.target_size_m = parse_target_size(args, 0.0);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
   config.seed = nc.seed;
@@ -169,8 +125,7 @@ sim::SensorConfig render_config_of(const Args& args, const nbv::Config& nc) {
 }
 
 /// What the session's manifest records of the run.
-session::Manifest manifest_of(const Args& args, const session::ExploreConfig& config, const ArmInputs& arm_inputs,
-                              double target_size_m) {
+session::Manifest manifest_of(const Args& args, const session::ExploreConfig& config, const ArmInputs& arm_inputs) {
   const pipeline::Config& pc = config.pipeline;
   const nbv::Config& nc = pc.nbv;
   session::Manifest manifest;
@@ -191,77 +146,53 @@ session::Manifest manifest_of(const Args& args, const session::ExploreConfig& co
   manifest.pose_noise_deg = config.pose_noise_deg;
   manifest.registration = pc.register_scans;
   manifest.near_voids = nc.count_near_void_cells;
-  manifest.target_size_m = target_size_m;
+  manifest.target_size_m = pc.target_size_m;
   manifest.accumulation = utility::to_string(nc.accumulation);
   manifest.max_utility_vectors = nc.max_utility_vectors;
   return manifest;
 }
 
 /// The table row of a view, judged against the ground truth (revealed comes with the next).
-Row row_of(const session::ViewRecord& v, const map::OccupancyMap& map, const sim::GroundTruth& gt,
-           const sim::ExplorationScore& score, const Eigen::AlignedBox3d& S) {
-  const pipeline::StepResult& step = v.step;
-  const double R = map.resolution_m();
-  Row row;
-  row.view = v.view;
-  row.scan_s = v.scan_s;
-  row.registration_s = step.timing.registration_s;
-  row.integration_s = step.timing.integration_s;
-  row.frontiers_voids_s = step.timing.frontiers_voids_s;
-  row.search_s = step.timing.search_s;
-  row.map_void_cells = step.analysis.void_cells.size();
-  row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
-  row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
-  row.known_fraction = score.known_fraction(map);
-  row.target_cells = score.target_cells_seen(map);
-  row.target_seen = row.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
-  if (v.chosen) row.u_in_solid = gt.solid_among(step.nbv.views[*v.chosen].seen_void_cells);
-  row.free_in_solid = gt.free_in_solid(map, S);
-  if (step.registration) row.registration_fitness_m = step.registration->fitness_rmse_m;
+session::ViewRow row_of(const session::ViewRecord& v, const map::OccupancyMap& map, const sim::GroundTruth& gt,
+                        const sim::ExplorationScore& score, const Eigen::AlignedBox3d& S) {
+  session::ViewRow row = session::row_of(v, map, S);
+  session::TruthColumns truth;
+  truth.known_fraction = score.known_fraction(map);
+  truth.target_cells = score.target_cells_seen(map);
+  truth.target_seen = truth.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
+  if (v.chosen) truth.u_in_solid = gt.solid_among(v.step.nbv.views[*v.chosen].seen_void_cells);
+  truth.free_in_solid = gt.free_in_solid(map, S);
+  row.truth = truth;
   return row;
 }
 
 /// A view's report: its analysis, next best views, poses and table row.
-Json view_report(const std::string& scene, const session::ViewRecord& v, const session::ManifestView& files,
-                 const Row& row, double R, const std::vector<std::string>& joint_names, nbv::Strategy strategy) {
-  const pipeline::StepResult& step = v.step;
-  Json report = new_report("explore");
-  report["inputs"] = {{"scene", scene}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}};
-  Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, strategy, true);
-  results["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
-  results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
-  results["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
-  results["row"] = row_json(row);
-  report["results"] = results;
-  report["warnings"] = step.analysis.warnings;
+Json explore_view_report(const std::string& scene, const session::ViewRecord& v, const session::ManifestView& files,
+                         const session::ViewRow& row, double R, const std::vector<std::string>& joint_names,
+                         nbv::Strategy strategy, bool timing) {
+  Json report = view_report("explore", {{"scene", scene}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}},
+                            v.step, v.chosen, row, R, joint_names, strategy, timing);
+  report["results"]["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
+  report["results"]["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
   return report;
 }
 
 /// The run's report (--format json): the effective settings, the inputs, every row and how
 /// the loop ended.
-Json run_report(const Args& args, const session::ExploreConfig& config, double target_size_m,
+Json run_report(const Args& args, const session::ExploreConfig& config, const sim::SensorConfig& render_config,
                 const ArmInputs& arm_inputs, const std::string& dir, const session::ExploreResult& result,
-                const sim::ExplorationScore& score, const std::vector<Row>& rows) {
-  const pipeline::Config& pc = config.pipeline;
-  const nbv::Config& nc = pc.nbv;
+                const sim::ExplorationScore& score, const std::vector<session::ViewRow>& rows) {
   Json report = new_report("explore");
-  report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"max_views", config.max_views},
-                      {"resolution_m", pc.resolution_m}, {"bounds_m", bounds_json(*pc.bounds_m)},
-                      {"pose_noise", {{"sigma_m", config.pose_noise_m}, {"sigma_deg", config.pose_noise_deg}}},
-                      {"registration", pc.register_scans}, {"seed", config.seed},
-                      {"target_size_m", target_size_m}, {"min_void_width_cells", pc.min_void_width_cells},
-                      {"sensor", depth_camera_json(nc.sensor)}};
-  report["config"].update(accumulation_json(nc));
+  report["config"] = session::config_json(config);
+  report["config"]["depth_noise_m_per_m2"] = render_config.noise_m_per_m2;
   report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
-  Json jrows = Json::array();
-  for (const Row& r : rows) jrows.push_back(row_json(r));
   report["results"] = {{"session", dir}, {"views", result.views}, {"end", result.end},
                        {"utility_exhausted", result.utility_exhausted},
                        {"observable_cells", score.observable_cells()},
                        {"observable_target_cells",
                         score.observable_target_cells() ? Json(*score.observable_target_cells()) : Json(nullptr)},
-                       {"rows", jrows}};
+                       {"rows", rows_json(rows, args.has("timing"))}};
   report["warnings"] = Json::array();
   return report;
 }
@@ -316,8 +247,7 @@ int run_explore(const Args& args) {
   check_inputs_and_output(args);
   const Format format = parse_format(args);
   const std::filesystem::path dir = args.get("output");
-  double target_size_m = 0.0;
-  session::ExploreConfig config = parse_config(args, target_size_m);
+  session::ExploreConfig config = parse_config(args);
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
   const sim::SensorConfig render_config = render_config_of(args, nc);
@@ -355,33 +285,32 @@ int run_explore(const Args& args) {
     restrict_to_arm(*arm_inputs.reach, gt, nc, score);
   }
   // The session directory: created only now that every input is good.
-  session::Recorder recorder(dir.string(), manifest_of(args, config, arm_inputs, target_size_m), nc.sensor);
+  session::Recorder recorder(dir.string(), manifest_of(args, config, arm_inputs), nc.sensor);
 
   const std::vector<std::string> joint_names =
       arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
   const session::Sensor kinect = kinect_of(*caster, render_config);
-  std::vector<Row> rows;
+  std::vector<session::ViewRow> rows;
   const session::ExploreResult result = session::explore(
       kinect, arm_inputs.reach, config, [&](const session::ViewRecord& v, const pipeline::State& state) {
-        const Row row = row_of(v, state.map, gt, score, S);
-        if (!rows.empty()) rows.back().revealed = v.revealed_void_cells;
-        rows.push_back(row);
+        session::append_row(rows, row_of(v, state.map, gt, score, S), v.revealed_void_cells);
+        const session::ViewRow& row = rows.back();
 
         // The view's files, then the manifest that lists them.
         recorder.add(v, state.map,
-                     report_text(view_report(args.positional[0], v, recorder.files_of(v), row, R, joint_names, nc.strategy)));
+                     report_text(explore_view_report(args.positional[0], v, recorder.files_of(v), row, R, joint_names,
+                                                 nc.strategy, args.has("timing"))));
         progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.map_void_cells) +
                         " void cells, next view sees " + std::to_string(row.void_cells) + ", " +
-                        fixed(100.0 * row.known_fraction, 1) + " % known" + (row.target_seen ? ", target seen" : ""));
+                        fixed(100.0 * row.truth->known_fraction, 1) + " % known" +
+                        (row.truth->target_seen ? ", target seen" : ""));
       });
   progress.finish();
 
   if (format == Format::json) {
-    write_report(run_report(args, config, target_size_m, arm_inputs, dir.string(), result, score, rows), "");
+    write_report(run_report(args, config, render_config, arm_inputs, dir.string(), result, score, rows), "");
   } else {
-    std::vector<std::vector<std::string>> table;
-    for (const Row& r : rows) table.push_back(cells(r));
-    print_table(kHeader, table, format, std::cout);
+    print_rows(rows, kColumns, format, std::cout);
     if (format == Format::markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
   }
   if (score.observable_target_cells() && *score.observable_target_cells() < sim::ExplorationScore::kTargetCellsSeen)

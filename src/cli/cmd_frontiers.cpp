@@ -3,6 +3,7 @@
 #include "command_table.hpp"
 #include "common_options.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/stopwatch.hpp"
 
 namespace fvx::cli {
 
@@ -16,6 +17,7 @@ const CommandSpec kFrontiersSpec = {
         {"cloud", 0, "FILE", "frontier cells as a coloured cloud, .ply or .pcd (red)"},
         {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
         {"picture", 0, "FILE.png", "a top view of occupied (grey) and frontier (red) cells"},
+        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report"},
         {"help", 'h', nullptr, "show this help"},
     }};
 
@@ -23,8 +25,11 @@ int run_frontiers(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx frontiers: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
   const auto bounds = parse_bounds(args);
+  Stopwatch clock;
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
+  const double load_s = clock.lap();
   frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, voids::ClusterConfig{}, 1, false);
+  const double analysis_s = clock.lap();
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, false, args.has("by-cluster"));
   if (args.has("picture")) write_picture(args.get("picture"), map, a, false);
 
@@ -36,6 +41,7 @@ int run_frontiers(const Args& args) {
                        {"frontier_cells", a.frontier_cells.size()},
                        {"frontier_clusters", frontier_clusters_json(a.frontier_clusters)}};
   if (a.frontier_cells.empty() && a.warnings.empty()) a.warnings.push_back("no frontier cell in the search space");
+  if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;
   write_report(report, args.has("output") ? args.get("output") : "");
   return 0;

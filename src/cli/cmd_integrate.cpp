@@ -112,34 +112,18 @@ Options parse(const Args& args) {
   return o;
 }
 
-Json config_json(const Options& o, const map::OccupancyMap& map) {
-  auto limit = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-  Json reg = {{"enabled", o.do_register},
-              {"method", registration::to_string(o.reg.method)},
-              {"voxel_m", o.reg.voxel_m},
-              {"max_correspondence_m", o.reg.max_correspondence_m},
-              {"fine_correspondence_m", o.reg.fine_correspondence_m},
-              {"fine_voxel_m", o.reg.fine_voxel_m},
-              {"min_observability", o.reg.min_observability},
-              {"robust_scale_m", o.reg.robust_scale_m},
-              {"max_iterations", o.reg.max_iterations},
-              {"translation_epsilon_m", o.reg.translation_epsilon_m},
-              {"rotation_epsilon_rad", o.reg.rotation_epsilon_rad}};
+/// The step's settings, then how scans are read and the map's sensor model.
+Json config_json(const Options& o, const pipeline::Config& config, const map::OccupancyMap& map) {
+  Json c = pipeline::config_json(config);
+  c["use_viewpoint"] = o.load.use_viewpoint;
+  c["max_time_diff_s"] = o.load.max_time_diff_s;
+  c["intrinsics"] = o.load.intrinsics ? io::intrinsics_json(*o.load.intrinsics) : Json(nullptr);
   const map::SensorModel model = map.sensor_model();
-  Json c = {{"resolution_m", map.resolution_m()},
-            {"max_range_m", limit(o.max_range_m)},
-            {"depth_min_m", o.filter.depth_min_m},
-            {"depth_max_m", limit(o.filter.depth_max_m)},
-            {"downsample_voxel_m", o.filter.voxel_m},
-            {"use_viewpoint", o.load.use_viewpoint},
-            {"max_time_diff_s", o.load.max_time_diff_s},
-            {"registration", reg},
-            {"sensor_model", {{"prob_hit", model.prob_hit},
-                              {"prob_miss", model.prob_miss},
-                              {"clamp_min", model.clamp_min},
-                              {"clamp_max", model.clamp_max},
-                              {"occupancy_threshold", model.occupancy_threshold}}}};
-  if (o.load.intrinsics) c["intrinsics"] = intrinsics_json(*o.load.intrinsics);
+  c["sensor_model"] = {{"prob_hit", model.prob_hit},
+                       {"prob_miss", model.prob_miss},
+                       {"clamp_min", model.clamp_min},
+                       {"clamp_max", model.clamp_max},
+                       {"occupancy_threshold", model.occupancy_threshold}};
   return c;
 }
 
@@ -221,8 +205,10 @@ int run_integrate(const Args& args) {
                      std::to_string(map.resolution_m()) + "); leave --resolution out");
   check_output(o.output_path);
 
+  // With --map, registration starts from the map's occupied cell centres (pipeline::State).
+  const pipeline::Config config = step_config(o, map.resolution_m());
   Json report = new_report("integrate");
-  report["config"] = config_json(o, map);
+  report["config"] = config_json(o, config, map);
   report["inputs"] = {{"map", o.map_path.empty() ? Json(nullptr) : Json(o.map_path)},
                       {"trajectory", o.load.trajectory_path.empty() ? Json(nullptr) : Json(o.load.trajectory_path)},
                       {"scans", o.scans}};
@@ -231,8 +217,6 @@ int run_integrate(const Args& args) {
   std::vector<std::string> warnings = plan.warnings;
   report["inputs"]["pose_match"] = scan::to_string(plan.match);
 
-  // With --map, registration starts from the map's occupied cell centres (pipeline::State).
-  const pipeline::Config config = step_config(o, map.resolution_m());
   pipeline::State state(std::move(map), config);
 
   Progress progress(o.progress);

@@ -240,38 +240,17 @@ nbv::Config parse_search_options(const Args& args) {
   return config;
 }
 
-/// The effective search settings, as the report echoes them.
+/// The effective settings: the search's, then the analysis's and where the arm stands.
 Json config_json(const nbv::Config& config, double target_size_m, int void_width,
                  const std::optional<Eigen::AlignedBox3d>& bounds, const voids::ClusterConfig& cluster_config,
                  const std::optional<Eigen::Isometry3d>& T_world_base) {
-  return {{"strategy", nbv::to_string(config.strategy)},
-          {"sensor", depth_camera_json(config.sensor)},
-          {"rays", {config.ray_cols, config.ray_rows}},
-          {"valid_poses", config.valid_poses},
-          {"target_size_m", target_size_m},
-          {"min_void_width_cells", void_width},
-          {"orientations_per_cell", config.orientations_per_cell},
-          {"jitter_deg", config.jitter_deg},
-          {"clearance_m", config.clearance_m},
-          {"min_separation_m", config.min_separation_m},
-          {"refine_poses", config.refine_poses},
-          {"refine_step_m", config.refine_step_m},
-          {"refine_max_m", config.refine_max_m},
-          {"polish_poses", config.polish_poses},
-          {"polish_rolls", config.polish_rolls},
-          {"climb_rounds", config.climb_rounds},
-          {"climb_step_m", config.climb_step_m},
-          {"climb_angle_deg", config.climb_angle_deg},
-          {"exhaustive_rolls", config.exhaustive_rolls},
-          {"count_near_void_cells", config.count_near_void_cells},
-          {"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
-          {"view_bounds_m", config.view_bounds_m ? bounds_json(*config.view_bounds_m) : Json(nullptr)},
-          {"min_fit_score", cluster_config.min_fit_score},
-          {"seed", config.seed},
-          {"accumulation", utility::to_string(config.accumulation)},
-          {"max_utility_vectors", config.max_utility_vectors},
-          {"top", config.top},
-          {"T_world_base", T_world_base ? pose_json(*T_world_base) : Json(nullptr)}};
+  Json j = nbv::config_json(config);
+  j["target_size_m"] = target_size_m;
+  j["min_void_width_cells"] = void_width;
+  j["bounds_m"] = bounds_json(bounds);
+  j["min_fit_score"] = cluster_config.min_fit_score;
+  j["T_world_base"] = T_world_base ? pose_json(*T_world_base) : Json(nullptr);
+  return j;
 }
 
 }  // namespace

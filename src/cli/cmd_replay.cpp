@@ -14,9 +14,10 @@
 #include "fvx/scan/load.hpp"
 #include "fvx/session/recorder.hpp"
 #include "fvx/session/replay.hpp"
+#include "fvx/session/rows.hpp"
 #include "fvx/session/session.hpp"
 #include "fvx/voids/width.hpp"
-#include "nbv_output.hpp"
+#include "session_output.hpp"
 #include "table.hpp"
 
 namespace fvx::cli {
@@ -62,69 +63,22 @@ const CommandSpec kReplaySpec = {
              accumulation_options(),
              depth_camera_options(),
              {
+                 {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
+                                        "byte for byte)"},
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
                  {"help", 'h', nullptr, "show this help"},
              }})};
 
 namespace {
 
-/// One row of the table: the paper's columns, then what a recording adds.
-struct Row {
-  int view = 0;
-  std::string scan;
-  double registration_s = 0, integration_s = 0, frontiers_voids_s = 0, search_s = 0;
-  bool searched = true;        ///< --search-every skipped the search after this view
-  std::size_t void_cells = 0;  ///< the paper's column: U of the chosen next view
-  double utility_dm3 = 0;      ///< void_cells · R³ in dm³
-  std::optional<double> fitness_m;
-  std::optional<double> next_m, next_deg;  ///< the next logged pose against the chosen view
-  std::optional<std::size_t> revealed;     ///< of this view's void cells, known after the next scan
-  std::size_t map_void_cells = 0;
-  double known_dm3 = 0, void_dm3 = 0;
-};
-
-const std::vector<std::string> kHeader = {"view",      "integration_s", "search_s",   "void_cells",     "utility_dm3",
-                                          "fitness_m", "next_m",        "next_deg",   "revealed",       "map_void_cells",
-                                          "known_dm3"};
-
-std::vector<std::string> cells(const Row& r) {
-  auto maybe = [](const std::optional<double>& v, int digits) { return v ? fixed(*v, digits) : std::string("-"); };
-  return {std::to_string(r.view + 1),
-          fixed(r.integration_s + r.frontiers_voids_s, 3),  // the paper's: octree, frontiers and voids
-          r.searched ? fixed(r.search_s, 3) : "-",
-          r.searched ? std::to_string(r.void_cells) : "-",
-          r.searched ? fixed(r.utility_dm3, 2) : "-",
-          maybe(r.fitness_m, 4),
-          maybe(r.next_m, 3),
-          maybe(r.next_deg, 1),
-          r.revealed ? std::to_string(*r.revealed) : "-",
-          std::to_string(r.map_void_cells),
-          fixed(r.known_dm3, 1)};
-}
-
-Json row_json(const Row& r) {
-  auto opt = [](const auto& v) { return v ? Json(*v) : Json(nullptr); };
-  return {{"view", r.view + 1},
-          {"scan", r.scan},
-          {"timing_s", {{"registration", r.registration_s}, {"integration", r.integration_s},
-                        {"frontiers_voids", r.frontiers_voids_s},
-                        {"search", r.searched ? Json(r.search_s) : Json(nullptr)}}},
-          {"void_cells", r.searched ? Json(r.void_cells) : Json(nullptr)},
-          {"utility_dm3", r.searched ? Json(r.utility_dm3) : Json(nullptr)},
-          {"registration_fitness_m", opt(r.fitness_m)},
-          {"next_distance_m", opt(r.next_m)},
-          {"next_angle_deg", opt(r.next_deg)},
-          {"revealed_void_cells", opt(r.revealed)},
-          {"map_void_cells", r.map_void_cells},
-          {"known_dm3", r.known_dm3},
-          {"void_dm3", r.void_dm3}};
-}
+const std::vector<std::string> kColumns = {"view",      "integration_s", "search_s",   "void_cells",     "utility_dm3",
+                                           "fitness_m", "next_m",        "next_deg",   "revealed",       "map_void_cells",
+                                           "known_dm3"};
 
 /// What a replay reads: the scans (loaded when their turn comes) and what the JSON names.
 struct Inputs {
   std::vector<session::RecordedScan> scans;
   std::string source;
-  double target_size_m = 0.0;  ///< as recorded (0 for recorded scans)
 };
 
 /// A session: the loop's settings as recorded (flags go on top later), the arm from its
@@ -147,7 +101,7 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   nc.seed = m.seed;
   pc.register_scans = m.registration;
   nc.count_near_void_cells = m.near_voids;
-  in.target_size_m = m.target_size_m;
+  pc.target_size_m = m.target_size_m;
   nc.accumulation = utility::parse_accumulation(m.accumulation, session.string() + "/manifest.json: accumulation");
   nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
   if (arm_flags) {
@@ -240,9 +194,8 @@ bool check_input_options(const Args& args) {
   return arm_flags;
 }
 
-/// The flags over what the recording says, then the whole config checked. Returns the target
-/// size, metres.
-double apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_inputs, int from, int to,
+/// The flags over what the recording says, then the whole config checked.
+void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_inputs, int from, int to,
                  session::ReplayConfig& config) {
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
@@ -251,8 +204,7 @@ double apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_
   if (args.has("no-register")) pc.register_scans = false;
   if (args.has("near-voids")) nc.count_near_void_cells = true;
   if (args.has("resolution")) pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
-  const double target_size_m = parse_target_size(args, inputs.target_size_m);
-  pc.min_void_width_cells = voids::void_width_for_target(target_size_m, pc.resolution_m);
+  pc.target_size_m = parse_target_size(args, pc.target_size_m);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   if (args.has("seed")) nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
@@ -269,48 +221,21 @@ double apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_
     throw UsageError("fvx replay: --from " + std::to_string(from) + ": the recording has " +
                      std::to_string(inputs.scans.size()) + " views");
   throw_if_problems("fvx replay", config.validate());
-  return target_size_m;
-}
-
-/// The table row of a view (revealed and next_* come with the next view).
-Row row_of(const session::ReplayView& v, double R) {
-  const pipeline::StepResult& step = v.step;
-  Row row;
-  row.view = v.view;
-  row.scan = v.name;
-  row.registration_s = step.timing.registration_s;
-  row.integration_s = step.timing.integration_s;
-  row.frontiers_voids_s = step.timing.frontiers_voids_s;
-  row.search_s = step.timing.search_s;
-  row.searched = step.searched;
-  row.void_cells = v.chosen ? step.nbv.views[*v.chosen].void_cells_seen : 0;
-  row.utility_dm3 = frontier_voids::to_dm3(double(row.void_cells) * R * R * R);
-  if (step.registration) row.fitness_m = step.registration->fitness_rmse_m;
-  row.map_void_cells = step.analysis.void_cells.size();
-  row.known_dm3 = frontier_voids::to_dm3(v.known_m3);
-  row.void_dm3 = frontier_voids::to_dm3(v.void_m3);
-  return row;
 }
 
 /// The view's report: its analysis, next best views, pose and table row.
-void write_view_report(const std::string& dir, const session::ReplayView& v, const Row& row, double R,
-                       const std::vector<std::string>& joint_names, nbv::Strategy strategy, const std::string& source) {
-  const pipeline::StepResult& step = v.step;
-  Json report = new_report("replay");
-  report["inputs"] = {{"source", source}, {"view", v.view + 1}, {"scan", v.name}};
-  Json results = nbv_results_json(step.nbv, step.analysis, R, joint_names, strategy, true);
-  results["T_world_sensor_integrated"] = pose_json(step.T_world_sensor);
-  results["chosen_rank"] = v.chosen ? Json(*v.chosen + 1) : Json(nullptr);
-  results["row"] = row_json(row);
-  report["results"] = results;
-  report["warnings"] = step.analysis.warnings;
+void write_view_report(const std::string& dir, const session::ReplayView& v, const session::ViewRow& row, double R,
+                       const std::vector<std::string>& joint_names, nbv::Strategy strategy, const std::string& source,
+                       bool timing) {
+  const Json report = view_report("replay", {{"source", source}, {"view", v.view + 1}, {"scan", v.name}}, v.step,
+                                  v.chosen, row, R, joint_names, strategy, timing);
   write_report(report, dir + "/reports/" + session::view_file_name(v.view, ".json"));
 }
 
 /// Known and void volume after each view, as a line plot.
-void write_volume_plot(const std::string& path, const std::vector<Row>& shown) {
+void write_volume_plot(const std::string& path, const std::vector<session::ViewRow>& shown) {
   std::vector<double> known, voids;
-  for (const Row& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
+  for (const session::ViewRow& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
   io::write_line_plot_png(path, "fvx replay: known and void volume in the search space after each view", "view",
                           "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
 }
@@ -332,14 +257,14 @@ int run_replay(const Args& args) {
   const Inputs inputs = args.positional.size() == 1 ? session_inputs(args, arm_flags, config, arm_inputs)
                                                     : recorded_inputs(args, arm_flags, config, arm_inputs);
   const std::vector<session::RecordedScan>& scans = inputs.scans;
-  const double target_size_m = apply_flags(args, inputs, arm_inputs, from, to, config);
+  apply_flags(args, inputs, arm_inputs, from, to, config);
   for (const char* sub : {"maps", "reports"}) std::filesystem::create_directories(dir / sub);
   const double R = pc.resolution_m;
   const std::vector<std::string> joint_names =
       arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
   const std::size_t total = config.last_view < 0 ? scans.size() : std::min<std::size_t>(scans.size(), to);
   Progress progress(args.has("progress"));
-  std::vector<Row> rows;  // every replayed view; the reported ones are view + 1 >= from
+  std::vector<session::ViewRow> rows;  // every replayed view; the reported ones are view + 1 >= from
   std::string failure;
   try {
     // Each view's map is written while its search runs (the next scan changes the map).
@@ -347,14 +272,10 @@ int run_replay(const Args& args) {
       if (view + 1 >= from) state.map.save((dir / "maps" / session::view_file_name(view, ".ot")).string());
     };
     session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
-      if (!rows.empty()) {
-        rows.back().revealed = v.revealed_void_cells;
-        rows.back().next_m = v.from_choice_m;
-        rows.back().next_deg = v.from_choice_deg;
-      }
-      const Row row = row_of(v, R);
-      rows.push_back(row);
-      if (v.view + 1 >= from) write_view_report(dir.string(), v, row, R, joint_names, nc.strategy, inputs.source);
+      session::append_row(rows, session::row_of(v, R), v.revealed_void_cells, v.from_choice_m, v.from_choice_deg);
+      const session::ViewRow& row = rows.back();
+      if (v.view + 1 >= from)
+        write_view_report(dir.string(), v, row, R, joint_names, nc.strategy, inputs.source, args.has("timing"));
       progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
                       std::to_string(row.map_void_cells) + " void cells, best view sees " +
                       std::to_string(row.void_cells));
@@ -365,32 +286,23 @@ int run_replay(const Args& args) {
   progress.finish();
 
   // What was replayed is reported even when a scan failed: its views' files are complete.
-  std::vector<Row> shown;
-  for (const Row& r : rows)
+  std::vector<session::ViewRow> shown;
+  for (const session::ViewRow& r : rows)
     if (r.view + 1 >= from) shown.push_back(r);
   if (!shown.empty()) write_volume_plot((dir / "volumes.png").string(), shown);
   if (format == Format::json) {
     Json report = new_report("replay");
-    report["config"] = {{"planner", nbv::to_string(nc.strategy)}, {"resolution_m", R},
-                        {"bounds_m", pc.bounds_m ? bounds_json(*pc.bounds_m) : Json(nullptr)},
-                        {"registration", pc.register_scans}, {"near_voids", nc.count_near_void_cells},
-                        {"target_size_m", target_size_m},
-                        {"seed", nc.seed}, {"sensor", depth_camera_json(nc.sensor)}};
-    report["config"].update(accumulation_json(nc));
+    report["config"] = session::config_json(config);
     report["inputs"] = {{"source", inputs.source}, {"views", scans.size()},
                         {"capmap_urdf_hash", arm_inputs.capability_map
                                                  ? Json(arm_inputs.capability_map->header().urdf_hash)
                                                  : Json(nullptr)}};
-    Json jrows = Json::array();
-    for (const Row& r : shown) jrows.push_back(row_json(r));
-    report["results"] = {{"output", dir.string()}, {"views", rows.size()}, {"rows", jrows},
+    report["results"] = {{"output", dir.string()}, {"views", rows.size()}, {"rows", rows_json(shown, args.has("timing"))},
                          {"error", failure.empty() ? Json(nullptr) : Json(failure)}};
     report["warnings"] = Json::array();
     write_report(report, "");
   } else {
-    std::vector<std::vector<std::string>> table;
-    for (const Row& r : shown) table.push_back(cells(r));
-    print_table(kHeader, table, format, std::cout);
+    print_rows(shown, kColumns, format, std::cout);
   }
   if (!failure.empty()) throw Error("fvx replay: " + failure + "; the " + std::to_string(rows.size()) +
                                     " views before it are in " + dir.string());

@@ -158,7 +158,7 @@ int run_simulate(const Args& args) {
   const auto caster = sim::make_ray_caster(scene.mesh, backend);
 
   Json report = new_report("simulate");
-  report["config"] = {{"intrinsics", intrinsics_json(sensor.intrinsics)},
+  report["config"] = {{"intrinsics", io::intrinsics_json(sensor.intrinsics)},
                       {"depth_min_m", sensor.depth_min_m},
                       {"depth_max_m", sensor.depth_max_m},
                       {"noise_m_per_m2", sensor.noise_m_per_m2},
@@ -200,7 +200,7 @@ int run_simulate(const Args& args) {
     write_tum((std::filesystem::path(output) / "trajectory.txt").string(), poses);
     if (depth_png) {
       const std::string path = (std::filesystem::path(output) / "intrinsics.json").string();
-      write_file_atomically(path, [&](std::ostream& out) { out << intrinsics_json(sensor.intrinsics).dump(2) << "\n"; });
+      write_file_atomically(path, [&](std::ostream& out) { out << io::intrinsics_json(sensor.intrinsics).dump(2) << "\n"; });
     }
   }
   report["results"]["frames"] = frames;

@@ -6,6 +6,7 @@
 #include "command_table.hpp"
 #include "common_options.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/stopwatch.hpp"
 
 namespace fvx::cli {
 
@@ -23,6 +24,7 @@ const CommandSpec kVoidsSpec = {
         {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
         {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh"},
         {"picture", 0, "FILE.png", "a top view of occupied (grey), frontier (red) and void (violet) cells"},
+        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report"},
         {"help", 'h', nullptr, "show this help"},
     }};
 
@@ -33,8 +35,11 @@ int run_voids(const Args& args) {
   voids::ClusterConfig config;
   config.min_fit_score = args.number("min-fit-score", config.min_fit_score, 0.0, 1.0, true);
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  Stopwatch clock;
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
+  const double load_s = clock.lap();
   frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, config);
+  const double analysis_s = clock.lap();
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
   if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);
   if (args.has("picture")) write_picture(args.get("picture"), map, a, true);
@@ -61,6 +66,7 @@ int run_voids(const Args& args) {
                        {"frontier_voids", frontier_voids_json(a.frontier_voids, a.void_clusters)},
                        {"observable_void_cells", paired_cells}};
   if (a.void_cells.empty() && a.warnings.empty()) a.warnings.push_back("no void cell in the search space");
+  if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;
   write_report(report, args.has("output") ? args.get("output") : "");
   return 0;

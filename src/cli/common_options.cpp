@@ -56,11 +56,6 @@ std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::stri
   return K;
 }
 
-Json intrinsics_json(const io::Intrinsics& K) {
-  return {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cx}, {"cy", K.cy},
-          {"depth_scale", K.depth_scale}, {"width", K.width}, {"height", K.height}};
-}
-
 std::vector<OptionSpec> depth_camera_options() {
   return options({{{"sensor", 0, "FILE", "sensor JSON: intrinsics, width, height, depth_min_m, depth_max_m "
                                          "(default Kinect v1: 640x480, f 525, 0.5-4 m)"},
@@ -77,12 +72,6 @@ io::DepthCamera parse_depth_camera(const Args& args, const std::string& command)
   camera.depth_max_m = args.number("depth-max", camera.depth_max_m, 0.0, 1e3, true);
   throw_if_problems("fvx " + command + ": sensor", camera.validate());
   return camera;
-}
-
-Json depth_camera_json(const io::DepthCamera& camera) {
-  return {{"intrinsics", intrinsics_json(camera.intrinsics)},
-          {"depth_min_m", camera.depth_min_m},
-          {"depth_max_m", camera.depth_max_m}};
 }
 
 std::vector<OptionSpec> arm_options() {

@@ -25,14 +25,12 @@ std::vector<OptionSpec> intrinsics_options(bool with_size);
 /// Throws UsageError naming `command` when the result is invalid.
 std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::string& command);
 
-Json intrinsics_json(const io::Intrinsics& K);
 
 /// --sensor FILE, --depth-min, --depth-max and the intrinsics options with the image size:
 /// a depth camera for planning.
 std::vector<OptionSpec> depth_camera_options();
 /// The sensor file (default Kinect v1), then the flags on top. UsageError when invalid.
 io::DepthCamera parse_depth_camera(const Args& args, const std::string& command);
-Json depth_camera_json(const io::DepthCamera& camera);
 
 /// --capmap, --base, --no-capmap, --arm: where the arm stands and what it reaches.
 std::vector<OptionSpec> arm_options();

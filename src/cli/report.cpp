@@ -36,15 +36,6 @@ void write_report(const Json& report, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
-Json pose_json(const Eigen::Isometry3d& T) {
-  Eigen::Quaterniond q(T.rotation());
-  if (q.w() < 0) q.coeffs() *= -1.0;  // one sign for one rotation
-  return {{"position_m", vec_json(T.translation())},
-          {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
-}
-
-Json vec_json(const Eigen::Vector3d& v) { return Json::array({v.x(), v.y(), v.z()}); }
-
 Progress::Progress(bool forced) : tty_(::isatty(STDERR_FILENO) != 0) { enabled_ = forced || tty_; }
 
 void Progress::update(const std::string& line) {

@@ -2,11 +2,13 @@
 // The JSON report every command writes: stdout carries only this (ARCHITECTURE.md §2).
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
+
+#include "fvx/core/json.hpp"
 #include <string>
 
 namespace fvx::cli {
 
-using Json = nlohmann::ordered_json;
+using fvx::Json;
 
 /// {"schema_version", "fvx_version", "command", "config": {}, "inputs": {}, "results": {},
 ///  "warnings": []} — the fields every report has, in that order.
@@ -17,12 +19,6 @@ std::string report_text(const Json& report);
 
 /// Writes report_text(report) to stdout when `path` is empty, otherwise atomically to `path`.
 void write_report(const Json& report, const std::string& path);
-
-/// {"position_m": [x, y, z], "quaternion_xyzw": [qx, qy, qz, qw]} with qw >= 0.
-Json pose_json(const Eigen::Isometry3d& T);
-
-/// [x, y, z]
-Json vec_json(const Eigen::Vector3d& v);
 
 /// Progress on stderr: only when stderr is a terminal or `--progress` was given.
 class Progress {

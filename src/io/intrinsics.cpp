@@ -104,3 +104,18 @@ DepthCamera read_depth_camera(const std::string& path) {
 }
 
 }  // namespace fvx::io
+
+namespace fvx::io {
+
+Json intrinsics_json(const Intrinsics& K) {
+  return {{"fx", K.fx}, {"fy", K.fy}, {"cx", K.cx}, {"cy", K.cy},
+          {"depth_scale", K.depth_scale}, {"width", K.width}, {"height", K.height}};
+}
+
+Json camera_json(const DepthCamera& camera) {
+  return {{"intrinsics", intrinsics_json(camera.intrinsics)},
+          {"depth_min_m", camera.depth_min_m},
+          {"depth_max_m", camera.depth_max_m}};
+}
+
+}  // namespace fvx::io

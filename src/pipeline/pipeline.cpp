@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "fvx/core/error.hpp"
+#include "fvx/voids/width.hpp"
 
 namespace fvx::pipeline {
 
@@ -14,6 +15,8 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 }  // namespace
 
+int Config::min_void_width_cells() const { return voids::void_width_for_target(target_size_m, resolution_m); }
+
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems;
   if (!(resolution_m > 0.0 && resolution_m <= 10.0)) problems.push_back("resolution_m must be in (0, 10] m");
@@ -21,7 +24,11 @@ std::vector<std::string> Config::validate() const {
     problems.push_back("bounds_m must be a finite, non-empty box");
   if (search && !analyse) problems.push_back("search needs analyse (frontiers and voids)");
   if (max_range_m && !(*max_range_m > 0.0)) problems.push_back("max_range_m must be > 0");
-  if (min_void_width_cells < 1 || min_void_width_cells > 16) problems.push_back("min_void_width_cells must be in [1, 16]");
+  if (!(target_size_m >= 0.0 && target_size_m <= 10.0))
+    problems.push_back("target_size_m must be in [0, 10] m");
+  else if (resolution_m > 0.0 && min_void_width_cells() > 16)
+    problems.push_back("target_size_m is " + std::to_string(min_void_width_cells()) +
+                       " cells wide here: at most 17 cells (min_void_width_cells 16)");
   for (const auto& p : filter.validate()) problems.push_back("filter: " + p);
   if (register_scans)
     for (const auto& p : registration.validate()) problems.push_back("registration: " + p);
@@ -81,7 +88,7 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
       state.void_set.update(state.map, integration.changes);
     }
     r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m,
-                                         config.clusters, config.min_void_width_cells);
+                                         config.clusters, config.min_void_width_cells());
   }
   state.analysed = config.analyse;
   r.timing.frontiers_voids_s = seconds_since(t0);

@@ -1,6 +1,7 @@
 #include "fvx/scan/scan.hpp"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <unordered_map>
 
 #include "fvx/core/error.hpp"
@@ -96,6 +97,14 @@ std::vector<Eigen::Vector3f> to_world(const Scan& scan) {
   world.reserve(scan.points_sensor.size());
   for (const auto& p : scan.points_sensor) world.push_back((scan.T_world_sensor * p).cast<float>());
   return world;
+}
+
+}  // namespace fvx::scan
+
+namespace fvx::scan {
+
+Json config_json(const FilterConfig& c) {
+  return {{"depth_min_m", c.depth_min_m}, {"depth_max_m", finite_or_null(c.depth_max_m)}, {"voxel_m", c.voxel_m}};
 }
 
 }  // namespace fvx::scan

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "fvx/core/error.hpp"
@@ -148,5 +149,11 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
   }
   return clusters;
 }
+
+}  // namespace fvx::voids
+
+namespace fvx::voids {
+
+Json config_json(const ClusterConfig& c) { return {{"min_fit_score", c.min_fit_score}, {"seed", c.seed}}; }
 
 }  // namespace fvx::voids

@@ -79,7 +79,16 @@ TEST(CliExplore, WritesTheTableAndASessionThatReadsBack) {
     EXPECT_LE(row["known_fraction"].get<double>(), 1.0);
     EXPECT_LE(row["void_cells_in_solid"].get<int>(), row["void_cells"].get<int>());
     EXPECT_GE(row["free_cells_in_solid"].get<int>(), 0);
+    EXPECT_FALSE(row.contains("timing_s"));
   }
+  // Without --timing, the same run gives the same report and the same view reports, byte for byte.
+  std::filesystem::rename(dir / "session3", dir / "first");
+  const RunResult again = run_fvx(dir, "explore" + kScene + arm() + " --max-views 3 --format json -o session3");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(again.out, js.out);
+  for (const session::ManifestView& v : m3.views)
+    EXPECT_EQ(slurp(dir / ("session3/" + v.report)), slurp(dir / ("first/" + v.report))) << v.report;
+  EXPECT_EQ(slurp(dir / "session3/manifest.json"), slurp(dir / "first/manifest.json"));
 }
 
 // The command line on both replicas (the arm at the origin, each victim's size): the
@@ -106,7 +115,7 @@ TEST(CliExplore, ThePaperReplicasEndWithUtilityZero) {
 TEST(CliExplore, PoseNoiseTurnsRegistrationOn) {
   const TempDir dir;
   const RunResult r =
-      run_fvx(dir, "explore" + kScene + arm() + " --max-views 2 --pose-noise 0.02,2 --format json -o s");
+      run_fvx(dir, "explore" + kScene + arm() + " --max-views 2 --pose-noise 0.02,2 --timing --format json -o s");
   ASSERT_EQ(r.status, 0) << r.err;
   const session::Manifest m = session::read_manifest(dir / "s");
   EXPECT_TRUE(m.registration);
@@ -115,6 +124,9 @@ TEST(CliExplore, PoseNoiseTurnsRegistrationOn) {
   EXPECT_GT((m.views[1].T_world_sensor_prior.translation() - m.views[1].T_world_sensor_true->translation()).norm(), 1e-4);
   const json j = json::parse(r.out);
   EXPECT_TRUE(j["results"]["rows"][1]["registration_fitness_m"].is_number());
+  // --timing: each stage's time, the virtual Kinect's among them.
+  EXPECT_GT(j["results"]["rows"][1]["timing_s"]["registration"].get<double>(), 0.0);
+  EXPECT_GT(j["results"]["rows"][1]["timing_s"]["render"].get<double>(), 0.0);
 }
 
 TEST(CliExplore, BadInputIsRefusedBeforeASessionIsWritten) {

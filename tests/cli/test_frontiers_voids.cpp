@@ -51,6 +51,13 @@ TEST(CliFrontiersVoids, ReportsAndFilesPeopleOpen) {
   EXPECT_GT(std::filesystem::file_size(dir / "e.ply"), 1000u);
   // Deterministic: the same map gives the same report.
   EXPECT_EQ(run_fvx(dir, "voids map.ot " + bounds).out, run_fvx(dir, "voids map.ot " + bounds).out);
+  EXPECT_FALSE(res.contains("timing_s"));
+  // --timing adds the load and analysis times, on both commands.
+  for (const char* command : {"voids", "frontiers"}) {
+    const RunResult timed = run_fvx(dir, std::string(command) + " map.ot --timing " + bounds);
+    ASSERT_EQ(timed.status, 0) << timed.err;
+    EXPECT_GT(json::parse(timed.out)["results"]["timing_s"]["analysis"].get<double>(), 0.0) << command;
+  }
 }
 
 TEST(CliFrontiersVoidsRealData, BothCommandsRunOnRealMaps) {

@@ -1,6 +1,7 @@
 #pragma once
 /// \file
 /// Pinhole intrinsics of a depth camera and the scale of its raw depth values.
+#include "fvx/core/json.hpp"
 #include <string>
 #include <vector>
 
@@ -45,5 +46,10 @@ struct DepthCamera {
 /// "height": 480, "depth_min_m": 0.5, "depth_max_m": 4.0}. Unknown keys are refused.
 /// Throws FileError naming the file and the problem.
 DepthCamera read_depth_camera(const std::string& path);
+
+/// The report form: {"fx", "fy", "cx", "cy", "depth_scale", "width", "height"}.
+Json intrinsics_json(const Intrinsics& K);
+/// {"intrinsics": intrinsics_json, "depth_min_m", "depth_max_m"}.
+Json camera_json(const DepthCamera& camera);
 
 }  // namespace fvx::io

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fvx/capmap/capability_map.hpp"
+#include "fvx/core/json.hpp"
 #include "fvx/capmap/viewing_ik.hpp"
 #include "fvx/frontier_voids/frontier_voids.hpp"
 #include "fvx/io/intrinsics.hpp"
@@ -111,6 +112,10 @@ struct Config {
 
   std::vector<std::string> validate() const;
 };
+
+/// Every setting of the search as a report echoes it (hidden_void_cells as their count; the
+/// progress callback and keep_utility_field are not settings of the result).
+Json config_json(const Config& c);
 
 struct View {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();

@@ -30,9 +30,9 @@ struct Config {
   bool register_scans = false;                     ///< step 2; off when the poses are exact
   registration::Config registration;
   voids::ClusterConfig clusters;                   ///< Eq. 2 region growing
-  /// Only void cells in an all-void cube this many cells wide count (frontier_voids::analyse;
-  /// voids::void_width_for_target gives it for a target size). 1: every void cell (the paper).
-  int min_void_width_cells = 1;
+  /// The searched object's smallest extent, metres: only void cells in an all-void cube
+  /// that always fits it count (min_void_width_cells()). 0: every void cell (the paper).
+  double target_size_m = 0.0;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
   /// Steps 4–6, frontiers, voids and frontier-voids; false: the step ends with the map
   /// (fvx integrate), and the search is off too.
@@ -40,8 +40,15 @@ struct Config {
   /// Step 7, the next-best-view search; false: the step ends with frontiers and voids (its
   /// nbv result is empty, with the reason "not searched").
   bool search = true;
+  /// The cube width, cells, that target_size_m fills at resolution_m
+  /// (voids::void_width_for_target; frontier_voids::analyse); 1 for target size 0.
+  int min_void_width_cells() const;
   std::vector<std::string> validate() const;
 };
+
+/// Every setting of the step, its stages' configs nested, as a report echoes it ("nbv" only
+/// when the step searches).
+Json config_json(const Config& c);
 
 /// What persists between steps: the map, the incremental frontier and void sets, and the
 /// accumulated cloud that scans are registered to.

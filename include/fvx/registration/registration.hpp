@@ -2,6 +2,7 @@
 /// \file
 /// Stage `registration` (paper §IV step 2): align a new scan to the map's accumulated cloud
 /// with PCL, starting from its pose prior. PCL stays in the .cpp.
+#include "fvx/core/json.hpp"
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
@@ -56,6 +57,9 @@ struct Config {
 
   std::vector<std::string> validate() const;
 };
+
+/// Every setting, as a report echoes it.
+Json config_json(const Config& c);
 
 struct Result {
   /// Refined pose; the prior when not converged.

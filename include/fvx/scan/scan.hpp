@@ -3,6 +3,7 @@
 /// Stage `scan` (paper §IV step 1): one recorded scan — points in the sensor frame and the
 /// prior `T_world_sensor` — and its preprocessing: NaN removal, depth limits, optional voxel
 /// downsampling.
+#include "fvx/core/json.hpp"
 #include <Eigen/Geometry>
 #include <limits>
 #include <string>
@@ -37,6 +38,9 @@ struct FilterConfig {
 
   std::vector<std::string> validate() const;
 };
+
+/// The effective filter as a report echoes it (no depth limit: null).
+Json config_json(const FilterConfig& c);
 
 /// What filter() removed.
 struct FilterStats {

@@ -35,6 +35,9 @@ struct ReplayConfig {
   std::vector<std::string> validate() const;
 };
 
+/// The replay's settings and the step's (pipeline::config_json), as a report echoes them.
+Json config_json(const ReplayConfig& c);
+
 struct ReplayView {
   int view = 0;
   std::string name;

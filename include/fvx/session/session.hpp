@@ -85,6 +85,9 @@ struct ExploreConfig {
   std::vector<std::string> validate() const;
 };
 
+/// The loop's settings and the step's (pipeline::config_json), as a report echoes them.
+Json config_json(const ExploreConfig& c);
+
 /// The scan a sensor records at its true pose: sensor-frame points, NaN where a pixel has
 /// no measurement.
 using Sensor = std::function<std::vector<Eigen::Vector3d>(const Eigen::Isometry3d& T_world_sensor_true, int view)>;

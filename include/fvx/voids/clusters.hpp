@@ -9,6 +9,7 @@
 /// well-filled ellipsoid (ARCHITECTURE.md §3). λ_j are the eigenvalues of the covariance of
 /// the cell centres plus R²/12, each cell's own extent (a cube's variance): a single cell
 /// scores 0.89, like any filled box, and flat clusters keep a finite score.
+#include "fvx/core/json.hpp"
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
@@ -28,6 +29,9 @@ struct ClusterConfig {
 
   std::vector<std::string> validate() const;
 };
+
+/// {"min_fit_score", "seed"}, as a report echoes them.
+Json config_json(const ClusterConfig& c);
 
 struct VoidCluster {
   int id = 0;

@@ -72,7 +72,8 @@ TEST(Pipeline, IncrementalAnalysisEqualsFromScratch) {
 TEST(Pipeline, AWideVoidCountsOnlyCellsThatCouldHideTheTarget) {
   const Crates crates;
   Config config = crates.config();
-  config.min_void_width_cells = 2;
+  config.target_size_m = 0.075;  // floor(0.075 / 0.025) - 1 = 2 cells
+  ASSERT_EQ(config.min_void_width_cells(), 2);
   State state(config.resolution_m);
   StepResult last;
   for (std::size_t i = 0; i < crates.views.size(); ++i)
@@ -86,7 +87,7 @@ TEST(Pipeline, AWideVoidCountsOnlyCellsThatCouldHideTheTarget) {
   for (const auto& c : last.analysis.void_clusters)
     for (const map::VoxelKey& k : c.cells)
       EXPECT_TRUE(std::binary_search(last.analysis.void_cells.begin(), last.analysis.void_cells.end(), k));
-  config.min_void_width_cells = 0;
+  config.target_size_m = -0.1;
   EXPECT_FALSE(config.validate().empty());
 }
 
@@ -203,7 +204,7 @@ TEST(Pipeline, RegistrationUndoesPoseNoise) {
 TEST(Pipeline, ABadConfigNamesEveryProblemAtOnce) {
   Config config;
   config.resolution_m = -1.0;
-  config.min_void_width_cells = 0;
+  config.target_size_m = -1.0;
   config.filter.depth_min_m = 3.0;
   config.filter.depth_max_m = 1.0;
   State state(0.025);
@@ -213,7 +214,7 @@ TEST(Pipeline, ABadConfigNamesEveryProblemAtOnce) {
   } catch (const UsageError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    for (const char* field : {"resolution_m", "min_void_width_cells", "filter: "})
+    for (const char* field : {"resolution_m", "target_size_m", "filter: "})
       EXPECT_NE(message.find(field), std::string::npos) << field << " missing from: " << message;
   }
   scan::Scan scan;
