@@ -18,7 +18,7 @@ for scene in paper-setting-1 paper-setting-2; do
   target_size=$([ "$scene" = paper-setting-1 ] && echo 0.08 || echo 0.06)
   for planner in frontier-void frontier random exhaustive; do
     "$fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 \
-      --arm data/arms/fvx-arm.urdf --target-size "$target_size" --strategy "$planner" --max-views "$max_views" --seed "$seed" \
+      --arm data/arms/fvx-arm.urdf --target-size "$target_size" --strategy "$planner" --max-views "$max_views" --seed "$seed" --timing \
       --format json -o "$out/$scene-$planner" 2>/dev/null |
       jq -r --arg scene "$scene" --arg planner "$planner" '
         def med: sort | .[(length / 2 | floor)];

@@ -44,10 +44,6 @@ const CommandSpec kExploreSpec = {
                  {"max-views", 0, "N", "stop after N scans (default 15)"},
                  {"pose-noise", 0, "M,DEG", "recorded poses after the first are off by Gaussian noise of sigma M "
                                             "metres and DEG degrees per axis; turns registration on"},
-                 {"near-voids", 0, nullptr, "count every void cell a ray crosses in U, and Algorithm 1's utility "
-                                            "from the frontier on (fvx nbv's default; default here: only what the "
-                                            "sensor can measure, beyond its minimum depth)"},
-                 {"far-voids-only", 0, nullptr, "only what the sensor can measure (the default; kept for scripts)"},
                  {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)"},
                  {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)"},
@@ -59,6 +55,7 @@ const CommandSpec kExploreSpec = {
                  {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
                  {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)"},
              },
+             near_voids_options(),
              target_size_options(),
              accumulation_options(),
              depth_camera_options(),
@@ -86,13 +83,9 @@ session::ExploreConfig parse_config(const Args& args) {
   nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
   parse_accumulation(args, nc);
   nc.view_bounds_m = parse_bounds(args, "view-bounds");
-  if (args.has("near-voids") && args.has("far-voids-only"))
-    throw UsageError("--near-voids and --far-voids-only contradict each other: give one");
-  // A loop takes the views it picks, and a view nearer to a void than the sensor's minimum
-  // depth measures nothing of it (fvx nbv --far-voids-only).
-  nc.count_near_void_cells = args.has("near-voids");
+  nc.count_near_void_cells = parse_near_voids(args, true);
   pc.clusters.seed = nc.seed;
-  pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  pc.resolution_m = parse_resolution(args, kDefaultResolution_m);
   pc.target_size_m = parse_target_size(args, 0.0);
   pc.filter.depth_min_m = nc.sensor.depth_min_m;
   pc.filter.depth_max_m = nc.sensor.depth_max_m;
@@ -140,7 +133,7 @@ session::Manifest manifest_of(const Args& args, const session::ExploreConfig& co
     manifest.capmap_urdf_hash = arm_inputs.capability_map->header().urdf_hash;
   }
   if (args.has("arm")) manifest.arm = args.get("arm");
-  manifest.planner = nbv::to_string(nc.strategy);
+  manifest.strategy = nbv::to_string(nc.strategy);
   manifest.seed = config.seed;
   manifest.pose_noise_m = config.pose_noise_m;
   manifest.pose_noise_deg = config.pose_noise_deg;

@@ -26,7 +26,7 @@ const CommandSpec kIntegrateSpec = {
         {"output", 'o', "FILE", "map to write, .bt or .ot (required; written atomically)"},
         {"map", 0, "FILE", "start from this map (.bt/.ot) instead of an empty one"},
         {"report", 0, "FILE", "write the JSON report to FILE instead of stdout"},
-        {"resolution", 'r', "M", "cell edge of a new map, metres (default 0.05)"},
+        {"resolution", 'r', "M", "cell edge of a new map, metres (default 0.025, the paper's)"},
         {"max-range", 0, "M", "cut rays longer than this, metres; their ends are not marked "
                               "occupied (default: no limit)"},
         {"depth-min", 0, "M", "drop points closer than this along the optical axis, metres (default 0)"},
@@ -59,7 +59,7 @@ namespace {
 
 struct Options {
   std::string output_path, map_path, report_path;
-  double resolution_m = 0.05;
+  double resolution_m = kDefaultResolution_m;
   double max_range_m = std::numeric_limits<double>::infinity();
   bool resolution_given = false;
   scan::FilterConfig filter;
@@ -79,7 +79,7 @@ Options parse(const Args& args) {
   const double inf = std::numeric_limits<double>::infinity();
   const double big = 1e6;
   o.resolution_given = args.has("resolution");
-  o.resolution_m = args.number("resolution", 0.05, 0.001, 10.0);
+  o.resolution_m = parse_resolution(args, kDefaultResolution_m);
   o.max_range_m = args.number("max-range", inf, 0.0, big, true);
   o.filter.depth_min_m = args.number("depth-min", 0.0, 0.0, big);
   o.filter.depth_max_m = args.number("depth-max", inf, 0.0, big, true);

@@ -47,10 +47,6 @@ const CommandSpec kNbvSpec = {
                  {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
                  {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
                  {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
-                 {"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells at its minimum "
-                                                "depth or beyond, Algorithm 1 adds utility from that distance of the "
-                                                "frontier on (default: every void cell a ray crosses, utility from the "
-                                                "frontier on)"},
                  {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
@@ -59,6 +55,7 @@ const CommandSpec kNbvSpec = {
                  {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)"},
                  {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)"},
              },
+             near_voids_options(),
              target_size_options(),
              accumulation_options(),
              depth_camera_options(),
@@ -157,7 +154,7 @@ Json view_json(const nbv::View& v, int rank, double R, const frontier_voids::Ana
   j["utility_dm3"] = frontier_voids::to_dm3(double(v.void_cells_seen) * R * R * R);  // as fvx voids
   if (strategy == nbv::Strategy::Frontier) {
     j["frontier_cells_seen"] = v.frontier_cells_seen;
-    j["frontier_rays_through_cell"] = v.accumulated_utility_m3;
+    j["frontier_rays_through_cell"] = v.frontier_rays_through_cell;
   } else {
     j["accumulated_utility_dm3"] = frontier_voids::to_dm3(v.accumulated_utility_m3);
   }
@@ -232,7 +229,7 @@ nbv::Config parse_search_options(const Args& args) {
   config.polish_poses = int(args.integer("polish", config.polish_poses, 0, max_int));
   config.climb_rounds = int(args.integer("climb", config.climb_rounds, 0, 100));
   config.exhaustive_rolls = int(args.integer("rolls", config.exhaustive_rolls, 1, 360));
-  config.count_near_void_cells = !args.has("far-voids-only");
+  config.count_near_void_cells = parse_near_voids(args, true);
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   config.threads = unsigned(args.integer("threads", 0, 0, 1024));

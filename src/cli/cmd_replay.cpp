@@ -49,8 +49,6 @@ const CommandSpec kReplaySpec = {
                  {"register", 0, nullptr, "register every scan to the map (default for --tum and --scans; "
                                           "a session: as recorded)"},
                  {"no-register", 0, nullptr, "integrate scans at their logged poses"},
-                 {"near-voids", 0, nullptr, "U counts every void cell a ray crosses (as fvx nbv; default, as fvx "
-                                            "explore: only what the sensor can measure)"},
                  {"resolution", 'r', "M", "map cell edge, metres (default 0.025, or the session's)"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the session's, else the "
                                                     "known cells' box)"},
@@ -59,6 +57,7 @@ const CommandSpec kReplaySpec = {
                  {"seed", 0, "N", "seed of the planner (default 1, or the session's)"},
                  {"threads", 0, "N", "threads for the search (default 0: all cores)"},
              },
+             near_voids_options(),
              target_size_options(),
              accumulation_options(),
              depth_camera_options(),
@@ -97,7 +96,7 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   pc.resolution_m = m.resolution_m;
   pc.bounds_m = m.search_space_m;
   nc.view_bounds_m = m.view_bounds_m;
-  nc.strategy = nbv::parse_strategy(m.planner, session.string() + "/manifest.json: planner");
+  nc.strategy = nbv::parse_strategy(m.strategy, session.string() + "/manifest.json: strategy");
   nc.seed = m.seed;
   pc.register_scans = m.registration;
   nc.count_near_void_cells = m.near_voids;
@@ -164,7 +163,6 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
   }
   pc.register_scans = !args.has("no-register");
   nc.strategy = nbv::Strategy::FrontierVoid;
-  nc.count_near_void_cells = false;  // as fvx explore: only what the sensor can measure
   if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
   return in;
 }
@@ -202,8 +200,8 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   nc.strategy = parse_strategy_option(args, "replay", nc.strategy);
   if (args.has("register")) pc.register_scans = true;
   if (args.has("no-register")) pc.register_scans = false;
-  if (args.has("near-voids")) nc.count_near_void_cells = true;
-  if (args.has("resolution")) pc.resolution_m = args.number("resolution", 0.025, 0.001, 1.0);
+  nc.count_near_void_cells = parse_near_voids(args, nc.count_near_void_cells);
+  pc.resolution_m = parse_resolution(args, pc.resolution_m);
   pc.target_size_m = parse_target_size(args, pc.target_size_m);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");

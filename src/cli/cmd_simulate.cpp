@@ -41,7 +41,7 @@ const CommandSpec kSimulateSpec = {
                                   "instead of PCD"},
         {"ground-truth", 0, "FILE.bt", "write the scene's voxel ground truth as a map (solid "
                                        "occupied, empty free)"},
-        {"resolution", 'r', "M", "ground-truth cell edge, metres (default 0.05)"},
+        {"resolution", 'r', "M", "ground-truth cell edge, metres (default 0.025, the paper's)"},
         {"bounds", 0, "x0,y0,z0,x1,y1,z1", "ground-truth region, metres (default: the sidecar's "
                                            "search space, else the mesh bounds)"},
         {"backend", 0, "NAME", "ray casting: embree (default), cgal or brute"},
@@ -152,7 +152,7 @@ int run_simulate(const Args& args) {
     if (ext != (depth_png ? ".png" : ".pcd"))
       throw UsageError("fvx simulate: --output " + output + ": expected a " + (depth_png ? ".png" : ".pcd") + " file");
   }
-  const double resolution_m = args.number("resolution", 0.05, 0.001, 10.0);
+  const double resolution_m = parse_resolution(args, kDefaultResolution_m);
 
   const sim::Scene scene = scene_from(args.positional[0], args);
   const auto caster = sim::make_ray_caster(scene.mesh, backend);

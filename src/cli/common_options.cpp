@@ -74,6 +74,26 @@ io::DepthCamera parse_depth_camera(const Args& args, const std::string& command)
   return camera;
 }
 
+double parse_resolution(const Args& args, double fallback) {
+  return args.number("resolution", fallback, 0.001, 1.0);
+}
+
+std::vector<OptionSpec> near_voids_options() {
+  return {{"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells from its minimum "
+                                         "depth on, Algorithm 1 adds utility from that distance beyond the "
+                                         "frontier (default: every void cell a ray crosses, utility from the "
+                                         "frontier on)"},
+          {"near-voids", 0, nullptr, "every void cell a ray crosses counts (the default; kept for scripts)"}};
+}
+
+bool parse_near_voids(const Args& args, bool fallback) {
+  if (args.has("near-voids") && args.has("far-voids-only"))
+    throw UsageError("--near-voids and --far-voids-only contradict each other: give one");
+  if (args.has("near-voids")) return true;
+  if (args.has("far-voids-only")) return false;
+  return fallback;
+}
+
 std::vector<OptionSpec> arm_options() {
   return {
       {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)"},

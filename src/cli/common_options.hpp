@@ -58,6 +58,17 @@ void load_arm_files(const std::string& capmap_path, const std::string& urdf_path
 /// 0, or 1.4e-3 (Khoshelham & Elberink 2012). UsageError for another model.
 double parse_depth_noise(const Args& args);
 
+/// --resolution M, metres in [0.001, 1]; `fallback` when absent. One range and, through
+/// kDefaultResolution_m, one default for every command.
+double parse_resolution(const Args& args, double fallback);
+inline constexpr double kDefaultResolution_m = 0.025;  ///< the paper's 2.5 cm (pipeline::Config)
+
+/// --far-voids-only and --near-voids (the default of every command; kept for scripts).
+std::vector<OptionSpec> near_voids_options();
+/// nbv::Config::count_near_void_cells from them, `fallback` (a session's) when neither is
+/// given; UsageError when both are.
+bool parse_near_voids(const Args& args, bool fallback);
+
 /// --target-size M: the searched object's smallest extent, metres; only void cells that
 /// could hide it count (voids/width.hpp). 0 (the default): every void cell.
 std::vector<OptionSpec> target_size_options();

@@ -164,6 +164,10 @@ Result select_frontier(Search& s, Result result) {
                                      s.config.sensor.depth_min_m);
   const std::vector<std::size_t> seen = s.score(scorer, poses, result);
   result.views = s.rank(poses, seen, &rays_through, nullptr);
+  for (View& v : result.views) {  // rank() reads the field as util(c): it is a ray count here
+    v.frontier_rays_through_cell = v.accumulated_utility_m3;
+    v.accumulated_utility_m3 = 0.0;
+  }
   for (View& v : result.views) v.frontier_cells_seen = seen[v.pose_index];
   result.timing.scoring_s = seconds_since(t0);
   if (result.views.empty())

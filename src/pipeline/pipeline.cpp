@@ -43,17 +43,11 @@ State::State(map::OccupancyMap existing, const Config& config) : map(std::move(e
   }
 }
 
-StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
-  const auto problems = config.validate();
-  throw_if_problems("pipeline", problems);
-  StepResult r;
+namespace {
 
-  // Step 1: the scan, without NaNs, within the sensor's depths.
-  // A scan may measure nothing (every surface nearer than the minimum depth): the map stays.
-  r.filtered = scan::filter(scan, config.filter);
-
-  // Step 2: registration to the points integrated so far.
-  auto t0 = Clock::now();
+/// Step 2: the scan registered to the points integrated so far (its pose prior otherwise).
+void register_scan(const State& state, scan::Scan& scan, const Config& config, StepResult& r) {
+  const auto t0 = Clock::now();
   if (config.register_scans && !state.registration_target.empty() && r.filtered.kept > 0) {
     r.registration = registration::align(scan.points_sensor, scan.T_world_sensor, state.registration_target.points(),
                                          config.registration);
@@ -61,11 +55,13 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
   }
   r.T_world_sensor = scan.T_world_sensor;
   r.timing.registration_s = seconds_since(t0);
+}
 
-  // Step 3: integration; the change set drives the incremental updates.
-  t0 = Clock::now();
+/// Step 3: the scan into the map; returns the change set that drives the incremental updates.
+map::Integration integrate_scan(State& state, const scan::Scan& scan, const Config& config, StepResult& r) {
+  const auto t0 = Clock::now();
   const double range_m = config.max_range_m.value_or(config.nbv.sensor.depth_max_m);
-  const map::Integration integration =
+  map::Integration integration =
       state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m);
   r.integration = map::counts(integration);
   if (config.register_scans) {
@@ -75,11 +71,14 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
     state.registration_target.add(scan.T_world_sensor, scan.points_sensor);
   }
   r.timing.integration_s = seconds_since(t0);
+  return integration;
+}
 
-  // §IV-A, §IV-B: frontiers and voids from the change set, then the frontier-voids.
-  t0 = Clock::now();
+/// §IV-A, §IV-B: frontiers and voids from the change set (rebuilt when the last step did not
+/// analyse: the sets are behind the map then), then their pairs, the frontier-voids.
+void update_frontiers_and_voids(State& state, const map::Integration& integration, const Config& config, StepResult& r) {
+  const auto t0 = Clock::now();
   if (config.analyse) {
-    // A step that did not analyse left the sets behind the map: rebuilt then.
     if (!state.analysed) {
       state.frontier_set.rebuild(state.map);
       state.void_set.rebuild(state.map);
@@ -92,6 +91,19 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
   }
   state.analysed = config.analyse;
   r.timing.frontiers_voids_s = seconds_since(t0);
+}
+
+}  // namespace
+
+StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
+  throw_if_problems("pipeline", config.validate());
+  StepResult r;
+  // Step 1: the scan without NaNs, within the sensor's depths. A scan may measure nothing
+  // (every surface nearer than the minimum depth): the map stays as it is then.
+  r.filtered = scan::filter(scan, config.filter);
+  register_scan(state, scan, config, r);                                        // step 2
+  const map::Integration integration = integrate_scan(state, scan, config, r);  // step 3
+  update_frontiers_and_voids(state, integration, config, r);                    // steps 4–6
   r.nbv.reason = "not searched";
   ++state.steps;
   return r;

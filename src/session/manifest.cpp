@@ -81,7 +81,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["arm"] = m.arm.empty() ? Json(nullptr) : Json(m.arm);
   j["capmap"] = m.capmap.empty() ? Json(nullptr) : Json(m.capmap);
   j["capmap_urdf_hash"] = m.capmap_urdf_hash.empty() ? Json(nullptr) : Json(m.capmap_urdf_hash);
-  j["planner"] = m.planner;
+  j["strategy"] = m.strategy;
   j["seed"] = m.seed;
   j["pose_noise"] = {{"sigma_m", m.pose_noise_m}, {"sigma_deg", m.pose_noise_deg}};
   j["registration"] = m.registration;
@@ -130,7 +130,8 @@ Manifest read_manifest(const std::string& dir) {
   m.arm = r.at(j, "arm").is_null() ? "" : r.text(j, "arm");
   m.capmap = r.at(j, "capmap").is_null() ? "" : r.text(j, "capmap");
   m.capmap_urdf_hash = r.at(j, "capmap_urdf_hash").is_null() ? "" : r.text(j, "capmap_urdf_hash");
-  m.planner = r.text(j, "planner");
+  // "planner": its name in sessions written before every command called it the strategy.
+  m.strategy = r.text(j, j.contains("strategy") || !j.contains("planner") ? "strategy" : "planner");
   m.seed = r.at(j, "seed").get<std::uint64_t>();
   m.pose_noise_m = r.number(r.at(j, "pose_noise"), "sigma_m");
   m.pose_noise_deg = r.number(r.at(j, "pose_noise"), "sigma_deg");

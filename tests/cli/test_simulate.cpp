@@ -28,7 +28,7 @@ TEST(CliSimulate, OnePoseToAnOrganisedPcdThatIntegrateReads) {
   EXPECT_EQ(cloud.width, 640);
   EXPECT_EQ(cloud.height, 480);
   EXPECT_NEAR(cloud.viewpoint.translation().z(), 0.9, 1e-6);
-  const RunResult integrate = run_fvx(dir, "integrate -o m.bt scan.pcd");
+  const RunResult integrate = run_fvx(dir, "integrate -o m.bt -r 0.05 scan.pcd");  // the cells below: 5 cm
   ASSERT_EQ(integrate.status, 0) << integrate.err;
   EXPECT_EQ(json::parse(integrate.out)["results"]["scans"][0]["pose_source"], "viewpoint");
   // The crate with the side opening was seen: its front wall is occupied, in front of it free.

@@ -89,11 +89,13 @@ struct Config {
   std::optional<Eigen::AlignedBox3d> view_bounds_m;
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
   int random_tries = 1000;            ///< random: valid poses drawn at most, until one sees a void cell
-  /// Count void cells nearer than the sensor's minimum depth in U (ARCHITECTURE.md §3: every
-  /// void cell crossed), and let Algorithm 1 add utility from the frontier cell on. false:
-  /// only cells at depth_min_m or beyond count, and a utility vector adds utility only from
-  /// depth_min_m beyond its frontier cell (utility::Config::min_range_m) — a view that close
-  /// to a hidden surface records nothing, so an exploration loop does not chase it.
+  /// Count void cells nearer than the sensor's minimum depth in U (the original design's §3:
+  /// every void cell crossed), and let Algorithm 1 add utility from the frontier cell on; the
+  /// default of every command. false (--far-voids-only): only cells at depth_min_m or beyond
+  /// count, and a utility vector adds utility only from depth_min_m beyond its frontier cell
+  /// (utility::Config::min_range_m) — a view that close to a hidden surface records nothing.
+  /// Measured (README, "One default"): the default finds better single views and the victim
+  /// more often; false ends the paper replicas' loops at utility 0 more often.
   bool count_near_void_cells = true;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
@@ -122,7 +124,10 @@ struct View {
   std::size_t void_cells_seen = 0;       ///< U_i
   std::vector<map::VoxelKey> seen_void_cells;  ///< the U_i cells, key order
   std::size_t frontier_cells_seen = 0;   ///< strategy frontier: the largest frontier cluster's cells seen
-  double accumulated_utility_m3 = 0.0;   ///< util(c) at the viewpoint's cell (frontier: rays, not m³)
+  double accumulated_utility_m3 = 0.0;   ///< util(c) of Algorithm 1 at the viewpoint's cell; 0 for the others
+  /// Strategy frontier: how many of its rays from the largest frontier cluster crossed the
+  /// viewpoint's cell (its field in place of Algorithm 1's); 0 for the others.
+  double frontier_rays_through_cell = 0.0;
   /// Void clusters the view sees: (void id, cells seen), most cells first.
   std::vector<std::pair<int, std::size_t>> voids_seen;
   /// The frontier-voids whose utility reached the viewpoint's cell (Analysis indices),

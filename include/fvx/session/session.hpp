@@ -43,7 +43,7 @@ struct Manifest {
   std::string arm;                                   ///< URDF path as given; empty: free-flying
   std::string capmap;                                ///< capability map path as given
   std::string capmap_urdf_hash;
-  std::string planner = "frontier-void";
+  std::string strategy = "frontier-void";           ///< nbv::Strategy; key "planner" in older sessions
   std::uint64_t seed = 1;
   double pose_noise_m = 0.0, pose_noise_deg = 0.0;   ///< σ of the recorded priors' error
   bool registration = false;

@@ -388,6 +388,12 @@ TEST(Nbv, TheFrontierStrategyViewsTheLargestFrontierCluster) {
   EXPECT_GT(r.views.front().frontier_cells_seen, 0u);
   for (std::size_t i = 1; i < r.views.size(); ++i)
     EXPECT_GE(r.views[i - 1].frontier_cells_seen, r.views[i].frontier_cells_seen);
+  // Its field is a ray count, and it says so: no Algorithm 1 utility in m³.
+  for (const View& v : r.views) {
+    EXPECT_GT(v.frontier_rays_through_cell, 0.0);
+    EXPECT_EQ(v.frontier_rays_through_cell, std::floor(v.frontier_rays_through_cell));
+    EXPECT_EQ(v.accumulated_utility_m3, 0.0);
+  }
 }
 
 TEST(Nbv, ConfigValidationListsTheProblems) {

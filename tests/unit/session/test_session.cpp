@@ -33,7 +33,7 @@ TEST(Session, ManifestRoundTrips) {
   m.arm = "arm.urdf";
   m.capmap = "arm.fcm";
   m.capmap_urdf_hash = "0123abcd";
-  m.planner = "frontier";
+  m.strategy = "frontier";
   m.seed = 42;
   m.pose_noise_m = 0.02;
   m.pose_noise_deg = 2.0;
@@ -60,7 +60,7 @@ TEST(Session, ManifestRoundTrips) {
   EXPECT_FALSE(r.view_bounds_m.has_value());
   EXPECT_TRUE(r.T_world_base->isApprox(*m.T_world_base, 1e-12));
   EXPECT_EQ(r.capmap_urdf_hash, m.capmap_urdf_hash);
-  EXPECT_EQ(r.planner, "frontier");
+  EXPECT_EQ(r.strategy, "frontier");
   EXPECT_EQ(r.seed, 42u);
   EXPECT_EQ(r.pose_noise_deg, 2.0);
   EXPECT_TRUE(r.registration);
@@ -73,6 +73,21 @@ TEST(Session, ManifestRoundTrips) {
     EXPECT_EQ(r.views[i].T_world_sensor_true.has_value(), i > 0);
     EXPECT_TRUE(r.views[i].joints_rad.isApprox(m.views[i].joints_rad));
   }
+}
+
+// Sessions written before the strategy had one name in every command call it "planner".
+TEST(Session, AnOlderManifestsPlannerIsItsStrategy) {
+  const test::TempDir dir;
+  Manifest m;
+  m.created_by = "test";
+  m.strategy = "random";
+  write_manifest(dir.path().string(), m);
+  const std::string file = (dir.path() / "manifest.json").string();
+  std::string text = test::slurp(file);
+  const auto key = text.find("\"strategy\":");
+  ASSERT_NE(key, std::string::npos);
+  std::ofstream(file) << text.replace(key, 11, "\"planner\":");
+  EXPECT_EQ(read_manifest(dir.path().string()).strategy, "random");
 }
 
 TEST(Session, ABadManifestNamesTheProblem) {
