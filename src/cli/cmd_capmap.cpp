@@ -23,28 +23,30 @@ const CommandSpec kCapmapSpec = {
     "| eval MAP.fcm ARM.urdf | export MAP.fcm -o FILE.ply | merge PART.fcm... -o MAP.fcm",
     "capability maps of the arm that carries the sensor (where it can look from, and which way)",
     {
-        {"output", 'o', "FILE", "build, merge: the map (.fcm); export: the cloud (.ply/.pcd)"},
-        {"base", 0, "LINK", "build: the arm's base link"},
-        {"tip", 0, "LINK", "build: the link the sensor is mounted on"},
+        {"output", 'o', "FILE", "build, merge: the map (.fcm); export: the cloud (.ply/.pcd)", "-"},
+        {"base", 0, "LINK", "build: the arm's base link", "/results/header/base_link"},
+        {"tip", 0, "LINK", "build: the link the sensor is mounted on", "/results/header/tip_link"},
         {"mount", 0, "x,y,z,roll,pitch,yaw", "build: sensor mount after the tip, metres and degrees "
-                                             "(default 0)"},
-        {"axis", 0, "x,y,z", "build: viewing axis in the sensor frame (default 0,0,1)"},
-        {"voxel", 0, "M", "build: voxel edge, metres (default 0.05)"},
-        {"directions", 0, "N", "build: viewing directions per voxel (default 200)"},
-        {"position-tolerance", 0, "M", "build: IK position tolerance, metres (default 0.005)"},
+                                             "(default 0)", "/results/header/mount_xyz_rpy"},
+        {"axis", 0, "x,y,z", "build: viewing axis in the sensor frame (default 0,0,1)", "/results/header/viewing_axis"},
+        {"voxel", 0, "M", "build: voxel edge, metres (default 0.05)", "/results/header/voxel_m"},
+        {"directions", 0, "N", "build: viewing directions per voxel (default 200)", "/results/header/directions"},
+        {"position-tolerance", 0, "M", "build: IK position tolerance, metres (default 0.005)",
+         "/results/header/position_tolerance_m"},
         {"angle-tolerance", 0, "DEG", "build: IK angle tolerance, degrees (default: half the mean "
-                                      "direction spacing)"},
-        {"seed", 0, "N", "build, eval: random seed (default 1)"},
-        {"fk-samples", 0, "N", "build: configurations of the forward pre-pass (default 400000)"},
-        {"restarts", 0, "N", "build: IK restarts per bit after the seed (default 8)"},
-        {"exhaustive", 0, nullptr, "build: IK for every voxel and direction (a slow baseline)"},
-        {"threads", 0, "N", "build: threads (default 0: all cores)"},
-        {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later"},
-        {"point", 0, "x,y,z", "query: a position in the base frame, metres"},
-        {"direction", 0, "x,y,z", "query: a viewing direction (need not be unit)"},
-        {"samples", 0, "N", "eval: queries for precision and for recall each (default 2000)"},
-        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
-        {"help", 'h', nullptr, "show this help"},
+                                      "direction spacing)", "/results/header/angle_tolerance_deg"},
+        {"seed", 0, "N", "build, eval: random seed (default 1)", "/config/seed"},
+        {"fk-samples", 0, "N", "build: configurations of the forward pre-pass (default 400000)", "/config/fk_samples"},
+        {"restarts", 0, "N", "build: IK restarts per bit after the seed (default 8)", "/config/ik_restarts"},
+        {"exhaustive", 0, nullptr, "build: IK for every voxel and direction (a slow baseline)", "/config/exhaustive"},
+        {"threads", 0, "N", "build: threads (default 0: all cores)", "/config/threads"},
+        {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later",
+         "/results/header/shard_index"},
+        {"point", 0, "x,y,z", "query: a position in the base frame, metres", "/results/point_m"},
+        {"direction", 0, "x,y,z", "query: a viewing direction (need not be unit)", "/results/direction"},
+        {"samples", 0, "N", "eval: queries for precision and for recall each (default 2000)", "/config/samples"},
+        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
+        {"help", 'h', nullptr, "show this help", "-"},
     }};
 
 namespace {
@@ -127,6 +129,8 @@ int build(const Args& args, Json& report) {
   std::signal(SIGTERM, SIG_DFL);
   if (g_interrupted) throw Error("fvx capmap build: interrupted; " + output + " was not written");
   map.save(output);
+  report["config"] = {{"seed", c.seed}, {"fk_samples", c.fk_samples}, {"ik_restarts", c.ik_restarts},
+                      {"threads", c.threads}, {"exhaustive", c.exhaustive}};
   report["inputs"] = {{"urdf", args.positional[1]}, {"joints", arm.joint_names()}};
   report["results"] = {{"output", output},
                        {"header", header_json(map.header())},
@@ -185,6 +189,7 @@ int eval(const Args& args, Json& report) {
   const int samples = int(args.integer("samples", 2000, 1, 100000000));
   const auto seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
   const capmap::Evaluation e = capmap::evaluate(map, arm, samples, seed);
+  report["config"] = {{"seed", seed}, {"samples", samples}};
   report["inputs"] = {{"map", args.positional[1]}, {"urdf", args.positional[2]}};
   report["results"] = {{"precision", e.precision()},
                        {"precision_queries", e.precision_queries},

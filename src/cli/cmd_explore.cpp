@@ -32,45 +32,56 @@ const CommandSpec kExploreSpec = {
     "SCENE.ply|builtin:NAME (--capmap ARM.fcm [--base POSE] [--arm URDF] | --no-capmap) -o SESSION/ [options]",
     "the closed loop on a simulated scene: scan, integrate, voids, next best view, move; per-view table",
     options({{
-                 {"output", 'o', "DIR", "the session directory to create (must not exist or be empty)"},
+                 {"output", 'o', "DIR", "the session directory to create (must not exist or be empty)", "-"},
              },
              arm_options(),
              {
-                 {"strategy", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive"},
-                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)"},
+                 {"strategy", 0, "NAME", "frontier-void (default, the paper's), frontier, random or exhaustive",
+                  "/config/pipeline/nbv/strategy"},
+                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)",
+                  "/config/pipeline/nbv/strategy"},
                  {"start", 0, "ex,ey,ez,tx,ty,tz", "first view: sensor at eye E looking at T, metres (default, "
                                                    "with an arm: its farthest reachable pose aimed within 10 "
-                                                   "degrees of the search space's centre)"},
-                 {"max-views", 0, "N", "stop after N scans (default 15)"},
+                                                   "degrees of the search space's centre)",
+                  "/config/T_world_sensor_start"},
+                 {"max-views", 0, "N", "stop after N scans (default 15)", "/config/max_views"},
                  {"pose-noise", 0, "M,DEG", "recorded poses after the first are off by Gaussian noise of sigma M "
-                                            "metres and DEG degrees per axis; turns registration on"},
-                 {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)"},
-                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)"},
-                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)"},
+                                            "metres and DEG degrees per axis; turns registration on",
+                  "/config/pose_noise"},
+                 {"register", 0, nullptr, "register every scan to the map (on with --pose-noise)",
+                  "/config/pipeline/register_scans"},
+                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, the paper's)",
+                  "/config/pipeline/resolution_m"},
+                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the scene's sidecar)",
+                  "/config/pipeline/bounds_m"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
-                                                         "known cells' box)"},
-                 {"scene-info", 0, "FILE", "ground-truth sidecar JSON (default: SCENE with .json)"},
-                 {"noise", 0, "MODEL", "depth noise of the virtual Kinect: none (default) or kinect"},
-                 {"seed", 0, "N", "seed of the planner, the depth noise and the pose noise (default 1)"},
-                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
-                 {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)"},
+                                                         "known cells' box)", "/config/pipeline/nbv/view_bounds_m"},
+                 {"scene-info", 0, "FILE", "ground-truth sidecar JSON (default: SCENE with .json)",
+                  "/inputs/scene_info"},
+                 {"noise", 0, "MODEL", "depth noise of the virtual Kinect: none (default) or kinect",
+                  "/config/depth_noise_m_per_m2"},
+                 {"seed", 0, "N", "seed of the planner, the depth noise and the pose noise (default 1)",
+                  "/config/seed"},
+                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json", "-"},
+                 {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)",
+                  "/config/pipeline/nbv/threads"},
              },
-             near_voids_options(),
-             target_size_options(),
-             accumulation_options(),
-             depth_camera_options(),
+             near_voids_options("/config/pipeline/nbv"),
+             target_size_options("/config/pipeline"),
+             accumulation_options("/config/pipeline/nbv"),
+             depth_camera_options("/config/pipeline/nbv"),
              {
                  {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
-                                        "byte for byte)"},
-                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
-                 {"help", 'h', nullptr, "show this help"},
+                                        "byte for byte)", "-"},
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
+                 {"help", 'h', nullptr, "show this help", "-"},
              }})};
 
 namespace {
 
-const std::vector<std::string> kColumns = {"view",           "integration_s", "search_s",    "void_cells", "utility_dm3",
-                                           "map_void_cells", "known_pct",     "target_seen", "revealed",
-                                           "u_in_solid"};
+const std::vector<std::string> kColumns = {"view",       "integration_s",  "search_s",  "void_cells",
+                                           "utility_dm3", "map_void_cells", "known_pct", "target_seen",
+                                           "revealed",   "u_in_solid"};
 
 /// The loop's settings from the options (all but the scene's: bounds and start come later).
 session::ExploreConfig parse_config(const Args& args) {
@@ -173,12 +184,16 @@ Json explore_view_report(const std::string& scene, const session::ViewRecord& v,
 /// The run's report (--format json): the effective settings, the inputs, every row and how
 /// the loop ended.
 Json run_report(const Args& args, const session::ExploreConfig& config, const sim::SensorConfig& render_config,
-                const ArmInputs& arm_inputs, const std::string& dir, const session::ExploreResult& result,
+                const std::string& scene_info_path, const ArmInputs& arm_inputs, const std::string& dir,
+                const session::ExploreResult& result,
                 const sim::ExplorationScore& score, const std::vector<session::ViewRow>& rows) {
   Json report = new_report("explore");
   report["config"] = session::config_json(config);
   report["config"]["depth_noise_m_per_m2"] = render_config.noise_m_per_m2;
-  report["inputs"] = {{"scene", args.positional[0]}, {"capmap", capmap_json(args, arm_inputs)},
+  report["inputs"] = {{"scene", args.positional[0]},
+                      {"scene_info", scene_info_path.empty() ? Json(nullptr) : Json(scene_info_path)},
+                      {"capmap", capmap_json(args.has("capmap") ? args.get("capmap") : "",
+                                             args.has("arm") ? args.get("arm") : "", arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
   report["results"] = {{"session", dir}, {"views", result.views}, {"end", result.end},
                        {"utility_exhausted", result.utility_exhausted},
@@ -301,7 +316,7 @@ int run_explore(const Args& args) {
   progress.finish();
 
   if (format == Format::json) {
-    write_report(run_report(args, config, render_config, arm_inputs, dir.string(), result, score, rows), "");
+    write_report(run_report(args, config, render_config, scene.info_path, arm_inputs, dir.string(), result, score, rows), "");
   } else {
     print_rows(rows, kColumns, format, std::cout);
     if (format == Format::markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";

@@ -12,13 +12,14 @@ const CommandSpec kFrontiersSpec = {
     "MAP.bt|MAP.ot [-o REPORT.json] [options]",
     "a map's frontier cells (free next to unknown) and their clusters",
     {
-        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
-        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)"},
-        {"cloud", 0, "FILE", "frontier cells as a coloured cloud, .ply or .pcd (red)"},
-        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
-        {"picture", 0, "FILE.png", "a top view of occupied (grey) and frontier (red) cells"},
-        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report"},
-        {"help", 'h', nullptr, "show this help"},
+        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
+        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
+         "/config/bounds_m"},
+        {"cloud", 0, "FILE", "frontier cells as a coloured cloud, .ply or .pcd (red)", "-"},
+        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead", "-"},
+        {"picture", 0, "FILE.png", "a top view of occupied (grey) and frontier (red) cells", "-"},
+        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report", "-"},
+        {"help", 'h', nullptr, "show this help", "-"},
     }};
 
 int run_frontiers(const Args& args) {

@@ -23,36 +23,43 @@ const CommandSpec kIntegrateSpec = {
     "-o MAP.bt|MAP.ot [options] SCAN...",
     "integrate recorded scans (PCD, PLY, depth images) into an OctoMap",
     options({{
-        {"output", 'o', "FILE", "map to write, .bt or .ot (required; written atomically)"},
-        {"map", 0, "FILE", "start from this map (.bt/.ot) instead of an empty one"},
-        {"report", 0, "FILE", "write the JSON report to FILE instead of stdout"},
-        {"resolution", 'r', "M", "cell edge of a new map, metres (default 0.025, the paper's)"},
+        {"output", 'o', "FILE", "map to write, .bt or .ot (required; written atomically)", "-"},
+        {"map", 0, "FILE", "start from this map (.bt/.ot) instead of an empty one", "/inputs/map"},
+        {"report", 0, "FILE", "write the JSON report to FILE instead of stdout", "-"},
+        {"resolution", 'r', "M", "cell edge of a new map, metres (default 0.025, the paper's)", "/config/resolution_m"},
         {"max-range", 0, "M", "cut rays longer than this, metres; their ends are not marked "
-                              "occupied (default: no limit)"},
-        {"depth-min", 0, "M", "drop points closer than this along the optical axis, metres (default 0)"},
-        {"depth-max", 0, "M", "drop points at or beyond this depth, metres (default: no limit)"},
-        {"downsample", 0, "M", "voxel-downsample each scan with this edge, metres (default 0: off)"},
+                              "occupied (default: no limit)", "/config/max_range_m"},
+        {"depth-min", 0, "M", "drop points closer than this along the optical axis, metres (default 0)",
+         "/config/filter/depth_min_m"},
+        {"depth-max", 0, "M", "drop points at or beyond this depth, metres (default: no limit)",
+         "/config/filter/depth_max_m"},
+        {"downsample", 0, "M", "voxel-downsample each scan with this edge, metres (default 0: off)",
+         "/config/filter/voxel_m"},
         {"pose", 0, "x,y,z,qx,qy,qz,qw", "pose prior T_world_sensor for every scan (metres, "
-                                         "quaternion scalar-last)"},
+                                         "quaternion scalar-last)", "/config/pose"},
         {"trajectory", 't', "FILE", "pose priors from a TUM (stamp tx ty tz qx qy qz qw, or "
-                                    "without stamp) or Redwood .log file"},
+                                    "without stamp) or Redwood .log file", "/inputs/trajectory"},
         {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, "
-                                  "seconds (default 0.02)"},
+                                  "seconds (default 0.02)", "/config/max_time_diff_s"},
         {"ignore-viewpoint", 0, nullptr, "do not use the PCD VIEWPOINT as pose (legacy OpenNI "
-                                         "captures)"},
-    }, intrinsics_options(false), {
-        {"register", 0, nullptr, "align each scan to the map before integrating it (default)"},
-        {"no-register", 0, nullptr, "integrate scans at their pose priors, without registration"},
-        {"reg-method", 0, "NAME", "registration method: gicp (default) or icp"},
-        {"reg-voxel", 0, "M", "downsampling voxel for registration, metres (default 0.05)"},
+                                         "captures)", "/config/use_viewpoint"},
+    }, intrinsics_options(false, "/config/intrinsics"), {
+        {"register", 0, nullptr, "align each scan to the map before integrating it (default)",
+         "/config/register_scans"},
+        {"no-register", 0, nullptr, "integrate scans at their pose priors, without registration",
+         "/config/register_scans"},
+        {"reg-method", 0, "NAME", "registration method: gicp (default) or icp", "/config/registration/method"},
+        {"reg-voxel", 0, "M", "downsampling voxel for registration, metres (default 0.05)",
+         "/config/registration/voxel_m"},
         {"reg-max-corr", 0, "M", "largest correspondence distance of the coarse pass, metres "
-                                 "(default 0.3)"},
+                                 "(default 0.3)", "/config/registration/max_correspondence_m"},
         {"reg-fine-corr", 0, "M", "largest correspondence distance of the fine pass, metres "
-                                  "(default 0.1)"},
-        {"reg-max-iter", 0, "N", "iteration cap; reaching it counts as not converged (default 60)"},
-        {"timing", 0, nullptr, "add per-stage times (seconds) to the report"},
-        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
-        {"help", 'h', nullptr, "show this help"},
+                                  "(default 0.1)", "/config/registration/fine_correspondence_m"},
+        {"reg-max-iter", 0, "N", "iteration cap; reaching it counts as not converged (default 60)",
+         "/config/registration/max_iterations"},
+        {"timing", 0, nullptr, "add per-stage times (seconds) to the report", "-"},
+        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
+        {"help", 'h', nullptr, "show this help", "-"},
     }})};
 
 namespace {
@@ -115,6 +122,7 @@ Options parse(const Args& args) {
 /// The step's settings, then how scans are read and the map's sensor model.
 Json config_json(const Options& o, const pipeline::Config& config, const map::OccupancyMap& map) {
   Json c = pipeline::config_json(config);
+  c["pose"] = o.load.pose ? pose_json(*o.load.pose) : Json(nullptr);
   c["use_viewpoint"] = o.load.use_viewpoint;
   c["max_time_diff_s"] = o.load.max_time_diff_s;
   c["intrinsics"] = o.load.intrinsics ? io::intrinsics_json(*o.load.intrinsics) : Json(nullptr);

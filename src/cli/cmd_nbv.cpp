@@ -23,50 +23,59 @@ const CommandSpec kNbvSpec = {
     "MAP.bt|MAP.ot (--capmap ARM.fcm [--base POSE] | --no-capmap) [-o VIEWS.json] [options]",
     "the next best views: utility vectors, pruning by the arm's reach, U by ray tracing (Eq. 3)",
     options({{
-                 {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
+                 {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
              },
              arm_options(),
              {
                  {"strategy", 0, "NAME", "frontier-void (default, the paper's), exhaustive (every reachable "
                                          "voxel and direction of the capability map), frontier (view the "
                                          "largest frontier cluster) or random (a random reachable view that "
-                                         "sees a void cell)"},
-                 {"top", 'n', "N", "ranked views to report (default 10)"},
-                 {"poses", 'N', "N", "stop after N valid poses (default 50, as in the paper)"},
-                 {"orientations", 0, "K", "orientations sampled per candidate cell (default 2)"},
+                                         "sees a void cell)", "/config/strategy"},
+                 {"top", 'n', "N", "ranked views to report (default 10)", "/config/top"},
+                 {"poses", 'N', "N", "stop after N valid poses (default 50, as in the paper)", "/config/valid_poses"},
+                 {"orientations", 0, "K", "orientations sampled per candidate cell (default 2)",
+                  "/config/orientations_per_cell"},
                  {"separation", 0, "M", "pass over cells nearer than M to a viewpoint already used, metres "
-                                        "(default 0.15; 0: every cell in utility order)"},
+                                        "(default 0.15; 0: every cell in utility order)", "/config/min_separation_m"},
                  {"refine", 0, "K", "step the K best poses back along their optical axis and score the steps "
-                                    "(default 10; 0: off, as the paper)"},
-                 {"refine-step", 0, "M", "refinement step and its limit, metres: STEP or STEP,MAX (default 0.1,0.8)"},
+                                    "(default 10; 0: off, as the paper)", "/config/refine_poses"},
+                 {"refine-step", 0, "M", "refinement step and its limit, metres: STEP or STEP,MAX (default 0.1,0.8)",
+                  "/config/refine_step_m"},
                  {"polish", 0, "K", "score the K best poses at 5 more rolls about their optical axis, 30 degrees "
-                                    "apart (default 3; 0: off, as the paper)"},
+                                    "apart (default 3; 0: off, as the paper)", "/config/polish_poses"},
                  {"climb", 0, "N", "then N rounds of a local climb from each of the K best poses: moved 5 cm along "
                                    "each axis and tilted 4 degrees, halving when nothing is better (default 0: off, "
-                                   "as the paper)"},
-                 {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)"},
-                 {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)"},
-                 {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)"},
-                 {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)"},
-                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)"},
+                                   "as the paper)", "/config/climb_rounds"},
+                 {"jitter", 0, "DEG", "tilt of sampled axes around their target, degrees (default 5)",
+                  "/config/jitter_deg"},
+                 {"clearance", 0, "M", "no occupied cell within M of a viewpoint, metres (default 0.1)",
+                  "/config/clearance_m"},
+                 {"rays", 0, "COLSxROWS", "field-of-view rays: a decimated pixel grid (default 80x60)", "/config/rays"},
+                 {"rolls", 0, "N", "exhaustive: rolls per direction over 180 degrees (default 2)",
+                  "/config/exhaustive_rolls"},
+                 {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the box of the known cells)",
+                  "/config/bounds_m"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
-                                                         "box of the known cells)"},
-                 {"min-fit-score", 0, "S", "void clusters keep a fit score (Eq. 2) at or above S (default 0.7)"},
-                 {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)"},
-                 {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)"},
+                                                         "box of the known cells)", "/config/view_bounds_m"},
+                 {"min-fit-score", 0, "S", "void clusters keep a fit score (Eq. 2) at or above S (default 0.7)",
+                  "/config/min_fit_score"},
+                 {"seed", 0, "N", "seed of cluster growing, orientation jitter and roll, IK restarts (default 1)",
+                  "/config/seed"},
+                 {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)",
+                  "/config/threads"},
              },
-             near_voids_options(),
-             target_size_options(),
-             accumulation_options(),
-             depth_camera_options(),
+             near_voids_options("/config"),
+             target_size_options("/config"),
+             accumulation_options("/config"),
+             depth_camera_options("/config"),
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
-                                              "yellow, green (high) by rank; pruned cells grey"},
-                 {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view"},
-                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
+                                              "yellow, green (high) by rank; pruned cells grey", "-"},
+                 {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view", "-"},
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
                  {"timing", 0, nullptr, "add the search time split (grid, accumulation, pruning, sampling, "
-                                        "scoring) and ray-casting speed to the report"},
-                 {"help", 'h', nullptr, "show this help"},
+                                        "scoring) and ray-casting speed to the report", "-"},
+                 {"help", 'h', nullptr, "show this help", "-"},
              }})};
 
 namespace {
@@ -329,7 +338,8 @@ int run_nbv(const Args& args) {
                                  reach ? std::optional<Eigen::Isometry3d>(T_world_base) : std::nullopt);
   report["inputs"] = {{"map", args.positional[0]},
                       {"resolution_m", R},
-                      {"capmap", capmap_json(args, arm_inputs)},
+                      {"capmap", capmap_json(args.has("capmap") ? args.get("capmap") : "",
+                                             args.has("arm") ? args.get("arm") : "", arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
   report["results"] = nbv_results_json(r, a, R, arm ? arm->joint_names() : std::vector<std::string>{},
                                        config.strategy, args.has("timing"));

@@ -27,57 +27,69 @@ const CommandSpec kReplaySpec = {
     "SESSION/ -o OUT/ | --tum DIR -o OUT/ | --scans 'GLOB' --trajectory FILE -o OUT/ [options]",
     "a recorded session offline: per scan integrate, voids, next best view; the paper's per-view table",
     options({{
-                 {"output", 'o', "DIR", "per-view maps, reports and the volume plot (must not exist or be empty)"},
-                 {"tum", 0, "DIR", "a TUM RGB-D style folder: depth/ and groundtruth.txt (or --associations)"},
+                 {"output", 'o', "DIR", "per-view maps, reports and the volume plot (must not exist or be empty)", "-"},
+                 {"tum", 0, "DIR", "a TUM RGB-D style folder: depth/ and groundtruth.txt (or --associations)",
+                  "/inputs/tum"},
                  {"associations", 0, "FILE", "with --tum: lines 'stamp rgb/… stamp depth/…' (or 'stamp depth/…') "
-                                             "naming the depth images, relative to DIR"},
-                 {"scans", 0, "GLOB", "the scans (PCD, PLY, depth images) in file-name order; quote the pattern"},
+                                             "naming the depth images, relative to DIR", "/inputs/associations"},
+                 {"scans", 0, "GLOB", "the scans (PCD, PLY, depth images) in file-name order; quote the pattern",
+                  "/inputs/scans"},
                  {"trajectory", 't', "FILE", "pose priors for --scans or --tum: TUM (stamp tx ty tz qx qy qz qw, "
-                                             "or without stamp) or Redwood .log"},
+                                             "or without stamp) or Redwood .log", "/inputs/trajectory"},
                  {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, seconds "
-                                           "(default 0.02)"},
-                 {"from", 0, "N", "first view reported, 1-based (default 1; earlier views are still replayed)"},
-                 {"to", 0, "N", "last view replayed, 1-based (default: all)"},
-                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json"},
+                                           "(default 0.02)", "/config/max_time_diff_s"},
+                 {"from", 0, "N", "first view reported, 1-based (default 1; earlier views are still replayed)",
+                  "/config/first_view"},
+                 {"to", 0, "N", "last view replayed, 1-based (default: all)", "/config/last_view"},
+                 {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json", "-"},
                  {"search-every", 0, "N", "search the next best view after every N-th view only (default 1; 0: "
-                                          "never, the table then holds integration alone)"},
+                                          "never, the table then holds integration alone)", "/config/search_every"},
              },
              arm_options(),
              {
-                 {"strategy", 0, "NAME", "frontier-void (default, or the session's), frontier, random or exhaustive"},
-                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)"},
+                 {"strategy", 0, "NAME", "frontier-void (default, or the session's), frontier, random or exhaustive",
+                  "/config/pipeline/nbv/strategy"},
+                 {"planner", 0, "NAME", "the same as --strategy (its earlier name here)",
+                  "/config/pipeline/nbv/strategy"},
                  {"register", 0, nullptr, "register every scan to the map (default for --tum and --scans; "
-                                          "a session: as recorded)"},
-                 {"no-register", 0, nullptr, "integrate scans at their logged poses"},
-                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, or the session's)"},
+                                          "a session: as recorded)", "/config/pipeline/register_scans"},
+                 {"no-register", 0, nullptr, "integrate scans at their logged poses",
+                  "/config/pipeline/register_scans"},
+                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, or the session's)",
+                  "/config/pipeline/resolution_m"},
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the session's, else the "
-                                                    "known cells' box)"},
+                                                    "known cells' box)", "/config/pipeline/bounds_m"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
-                                                         "session's, else the known cells' box)"},
-                 {"seed", 0, "N", "seed of the planner (default 1, or the session's)"},
-                 {"threads", 0, "N", "threads for the search (default 0: all cores)"},
+                                                         "session's, else the known cells' box)",
+                  "/config/pipeline/nbv/view_bounds_m"},
+                 {"seed", 0, "N", "seed of the planner (default 1, or the session's)", "/config/pipeline/nbv/seed"},
+                 {"threads", 0, "N", "threads for the search (default 0: all cores)", "/config/pipeline/nbv/threads"},
              },
-             near_voids_options(),
-             target_size_options(),
-             accumulation_options(),
-             depth_camera_options(),
+             near_voids_options("/config/pipeline/nbv"),
+             target_size_options("/config/pipeline"),
+             accumulation_options("/config/pipeline/nbv"),
+             depth_camera_options("/config/pipeline/nbv"),
              {
                  {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
-                                        "byte for byte)"},
-                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal"},
-                 {"help", 'h', nullptr, "show this help"},
+                                        "byte for byte)", "-"},
+                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
+                 {"help", 'h', nullptr, "show this help", "-"},
              }})};
 
 namespace {
 
-const std::vector<std::string> kColumns = {"view",      "integration_s", "search_s",   "void_cells",     "utility_dm3",
-                                           "fitness_m", "next_m",        "next_deg",   "revealed",       "map_void_cells",
-                                           "known_dm3"};
+const std::vector<std::string> kColumns = {"view",      "integration_s", "search_s", "void_cells",
+                                           "utility_dm3", "fitness_m",  "next_m",   "next_deg",
+                                           "revealed",  "map_void_cells", "known_dm3"};
 
 /// What a replay reads: the scans (loaded when their turn comes) and what the JSON names.
 struct Inputs {
   std::vector<session::RecordedScan> scans;
   std::string source;
+  /// What the report's inputs echo of the files named (null: not a recording's).
+  Json files = {{"tum", nullptr}, {"associations", nullptr}, {"scans", nullptr}, {"trajectory", nullptr}};
+  std::string capmap_path, arm_path;  ///< the arm's files, when there is one
+  double max_time_diff_s = scan::LoadConfig{}.max_time_diff_s;  ///< stamps matched within
 };
 
 /// A session: the loop's settings as recorded (flags go on top later), the arm from its
@@ -105,9 +117,13 @@ Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& c
   nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
   if (arm_flags) {
     load_arm_inputs(args, "fvx replay", arm_inputs);
+    if (args.has("capmap")) in.capmap_path = args.get("capmap");
+    if (args.has("arm")) in.arm_path = args.get("arm");
   } else if (!m.capmap.empty()) {
-    load_arm_files(session::resolve_path(m.capmap, session.string()), session::resolve_path(m.arm, session.string()), m.T_world_base.value_or(Eigen::Isometry3d::Identity()),
-                   "fvx replay", arm_inputs);
+    in.capmap_path = session::resolve_path(m.capmap, session.string());
+    in.arm_path = session::resolve_path(m.arm, session.string());
+    load_arm_files(in.capmap_path, in.arm_path, m.T_world_base.value_or(Eigen::Isometry3d::Identity()), "fvx replay",
+                   arm_inputs);
   }
   for (const session::ManifestView& v : m.views) {
     session::RecordedScan r;
@@ -149,7 +165,7 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
     in.source = args.get("scans");
   }
   load.intrinsics = nc.sensor.intrinsics;
-  load.max_time_diff_s = args.number("max-time-diff", 0.02, 0.0, 1e6);
+  load.max_time_diff_s = in.max_time_diff_s = args.number("max-time-diff", in.max_time_diff_s, 0.0, 1e6);
   const scan::ScanPlan plan = scan::plan_scans(paths, load);
   for (const auto& warning : plan.warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
   for (const scan::ScanSource& source : plan.scans) {
@@ -164,6 +180,12 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
   pc.register_scans = !args.has("no-register");
   nc.strategy = nbv::Strategy::FrontierVoid;
   if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
+  if (args.has("capmap")) in.capmap_path = args.get("capmap");
+  if (args.has("arm")) in.arm_path = args.get("arm");
+  in.files = {{"tum", args.has("tum") ? Json(args.get("tum")) : Json(nullptr)},
+              {"associations", args.has("associations") ? Json(args.get("associations")) : Json(nullptr)},
+              {"scans", args.has("scans") ? Json(args.get("scans")) : Json(nullptr)},
+              {"trajectory", load.trajectory_path}};
   return in;
 }
 
@@ -291,11 +313,14 @@ int run_replay(const Args& args) {
   if (format == Format::json) {
     Json report = new_report("replay");
     report["config"] = session::config_json(config);
-    report["inputs"] = {{"source", inputs.source}, {"views", scans.size()},
-                        {"capmap_urdf_hash", arm_inputs.capability_map
-                                                 ? Json(arm_inputs.capability_map->header().urdf_hash)
-                                                 : Json(nullptr)}};
-    report["results"] = {{"output", dir.string()}, {"views", rows.size()}, {"rows", rows_json(shown, args.has("timing"))},
+    report["config"]["first_view"] = from;
+    report["config"]["max_time_diff_s"] = inputs.max_time_diff_s;
+    report["inputs"] = {{"source", inputs.source}, {"views", scans.size()}};
+    report["inputs"].update(inputs.files);
+    report["inputs"]["capmap"] = capmap_json(inputs.capmap_path, inputs.arm_path, arm_inputs);
+    report["results"] = {{"output", dir.string()},
+                         {"views", rows.size()},
+                         {"rows", rows_json(shown, args.has("timing"))},
                          {"error", failure.empty() ? Json(nullptr) : Json(failure)}};
     report["warnings"] = Json::array();
     write_report(report, "");

@@ -15,17 +15,18 @@ const CommandSpec kVoidsSpec = {
     "MAP.bt|MAP.ot [-o REPORT.json] [options]",
     "a map's voids (unknown inside the hull), their ellipsoids, and frontier-voids with utility",
     {
-        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout"},
-        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)"},
+        {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
+        {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
+         "/config/bounds_m"},
         {"min-fit-score", 0, "S", "region growing keeps a cluster's fit score (Eq. 2) at or above S "
-                                  "(default 0.7)"},
-        {"seed", 0, "N", "order of the region-growing seeds (default 1)"},
-        {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd"},
-        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead"},
-        {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh"},
-        {"picture", 0, "FILE.png", "a top view of occupied (grey), frontier (red) and void (violet) cells"},
-        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report"},
-        {"help", 'h', nullptr, "show this help"},
+                                  "(default 0.7)", "/config/min_fit_score"},
+        {"seed", 0, "N", "order of the region-growing seeds (default 1)", "/config/seed"},
+        {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd", "-"},
+        {"by-cluster", 0, nullptr, "colour the cloud by cluster instead", "-"},
+        {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh", "-"},
+        {"picture", 0, "FILE.png", "a top view of occupied (grey), frontier (red) and void (violet) cells", "-"},
+        {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report", "-"},
+        {"help", 'h', nullptr, "show this help", "-"},
     }};
 
 int run_voids(const Args& args) {

@@ -13,18 +13,19 @@ std::vector<OptionSpec> options(std::initializer_list<std::vector<OptionSpec>> t
   return all;
 }
 
-std::vector<OptionSpec> intrinsics_options(bool with_size) {
+std::vector<OptionSpec> intrinsics_options(bool with_size, const std::string& echo) {
   std::vector<OptionSpec> table = {
-      {"intrinsics", 'K', "FILE", "depth camera intrinsics JSON (fvx or Open3D layout)"},
-      {"fx", 0, "PX", "focal length along u, pixels (overrides --intrinsics; default 525)"},
-      {"fy", 0, "PX", "focal length along v, pixels; may be negative (default 525)"},
-      {"cx", 0, "PX", "principal point u, pixels (default 319.5)"},
-      {"cy", 0, "PX", "principal point v, pixels (default 239.5)"},
-      {"depth-scale", 0, "N", "raw depth units per metre: 1000 (mm) or 5000 (TUM) (default 1000)"},
+      {"intrinsics", 'K', "FILE", "depth camera intrinsics JSON (fvx or Open3D layout)", echo},
+      {"fx", 0, "PX", "focal length along u, pixels (overrides --intrinsics; default 525)", echo + "/fx"},
+      {"fy", 0, "PX", "focal length along v, pixels; may be negative (default 525)", echo + "/fy"},
+      {"cx", 0, "PX", "principal point u, pixels (default 319.5)", echo + "/cx"},
+      {"cy", 0, "PX", "principal point v, pixels (default 239.5)", echo + "/cy"},
+      {"depth-scale", 0, "N", "raw depth units per metre: 1000 (mm) or 5000 (TUM) (default 1000)",
+       echo + "/depth_scale"},
   };
   if (with_size) {
-    table.push_back({"width", 0, "PX", "image width, pixels (default 640)"});
-    table.push_back({"height", 0, "PX", "image height, pixels (default 480)"});
+    table.push_back({"width", 0, "PX", "image width, pixels (default 640)", echo + "/width"});
+    table.push_back({"height", 0, "PX", "image height, pixels (default 480)", echo + "/height"});
   }
   return table;
 }
@@ -56,12 +57,14 @@ std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::stri
   return K;
 }
 
-std::vector<OptionSpec> depth_camera_options() {
+std::vector<OptionSpec> depth_camera_options(const std::string& echo) {
   return options({{{"sensor", 0, "FILE", "sensor JSON: intrinsics, width, height, depth_min_m, depth_max_m "
-                                         "(default Kinect v1: 640x480, f 525, 0.5-4 m)"},
-                   {"depth-min", 0, "M", "nearest measured depth, metres (overrides --sensor; default 0.5)"},
-                   {"depth-max", 0, "M", "farthest measured depth = sensor range s_r, metres (default 4)"}},
-                  intrinsics_options(true)});
+                                         "(default Kinect v1: 640x480, f 525, 0.5-4 m)", echo + "/sensor"},
+                   {"depth-min", 0, "M", "nearest measured depth, metres (overrides --sensor; default 0.5)",
+                    echo + "/sensor/depth_min_m"},
+                   {"depth-max", 0, "M", "farthest measured depth = sensor range s_r, metres (default 4)",
+                    echo + "/sensor/depth_max_m"}},
+                  intrinsics_options(true, echo + "/sensor/intrinsics")});
 }
 
 io::DepthCamera parse_depth_camera(const Args& args, const std::string& command) {
@@ -78,12 +81,13 @@ double parse_resolution(const Args& args, double fallback) {
   return args.number("resolution", fallback, 0.001, 1.0);
 }
 
-std::vector<OptionSpec> near_voids_options() {
+std::vector<OptionSpec> near_voids_options(const std::string& echo) {
   return {{"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells from its minimum "
                                          "depth on, Algorithm 1 adds utility from that distance beyond the "
                                          "frontier (default: every void cell a ray crosses, utility from the "
-                                         "frontier on)"},
-          {"near-voids", 0, nullptr, "every void cell a ray crosses counts (the default; kept for scripts)"}};
+                                         "frontier on)", echo + "/count_near_void_cells"},
+          {"near-voids", 0, nullptr, "every void cell a ray crosses counts (the default; kept for scripts)",
+           echo + "/count_near_void_cells"}};
 }
 
 bool parse_near_voids(const Args& args, bool fallback) {
@@ -96,12 +100,12 @@ bool parse_near_voids(const Args& args, bool fallback) {
 
 std::vector<OptionSpec> arm_options() {
   return {
-      {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)"},
+      {"capmap", 0, "FILE.fcm", "the arm's capability map (fvx capmap build)", "/inputs/capmap/file"},
       {"base", 0, "x,y,z,roll,pitch,yaw", "T_world_base: where the capability map's base stands, "
-                                          "metres and degrees (default 0,0,0,0,0,0)"},
-      {"no-capmap", 0, nullptr, "a free-flying sensor: no reachability constraint"},
+                                          "metres and degrees (default 0,0,0,0,0,0)", "/inputs/capmap/T_world_base"},
+      {"no-capmap", 0, nullptr, "a free-flying sensor: no reachability constraint", "/inputs/capmap"},
       {"arm", 0, "URDF", "the arm the capability map was built for: each view then needs IK, "
-                         "which gives its joint configuration"},
+                         "which gives its joint configuration", "/inputs/capmap/arm"},
   };
 }
 
@@ -138,11 +142,17 @@ void load_arm_files(const std::string& capmap_path, const std::string& urdf_path
   out.reach->ik.angle_tolerance_rad = h.angle_tolerance_rad;
 }
 
-Json capmap_json(const Args& args, const ArmInputs& in) {
+Json capmap_json(const std::string& path, const std::string& urdf_path, const ArmInputs& in) {
   if (!in.capability_map) return nullptr;
   const capmap::CapabilityHeader& h = in.capability_map->header();
-  return {{"file", args.get("capmap")}, {"base_link", h.base_link}, {"tip_link", h.tip_link},
-          {"urdf_hash", h.urdf_hash},   {"voxel_m", h.voxel_m},     {"directions", h.directions}};
+  return {{"file", path},
+          {"base_link", h.base_link},
+          {"tip_link", h.tip_link},
+          {"urdf_hash", h.urdf_hash},
+          {"voxel_m", h.voxel_m},
+          {"directions", h.directions},
+          {"T_world_base", pose_json(in.T_world_base)},
+          {"arm", urdf_path.empty() ? Json(nullptr) : Json(urdf_path)}};
 }
 
 double parse_depth_noise(const Args& args) {
@@ -152,30 +162,25 @@ double parse_depth_noise(const Args& args) {
   return 0.0;
 }
 
-std::vector<OptionSpec> target_size_options() {
+std::vector<OptionSpec> target_size_options(const std::string& echo) {
   return {{"target-size", 0, "M", "the searched object's smallest extent, metres: only void cells in an all-unknown "
                                   "cube of floor(M/R)-1 cells count, as only those can hide it (default 0: every "
-                                  "void cell, the paper's)"}};
+                                  "void cell, the paper's)", echo + "/target_size_m"}};
 }
 
-std::vector<OptionSpec> accumulation_options() {
+std::vector<OptionSpec> accumulation_options(const std::string& echo) {
   return {{"accumulation", 0, "MODE", "Algorithm 1's accumulation: sampled (default: above --utility-vectors, "
                                       "a stratified sample of each frontier-void's frontier cells, weighted so "
                                       "that the expected field is the exact one) or exact (every utility vector, "
-                                      "the paper's; minutes on large maps)"},
+                                      "the paper's; minutes on large maps)", echo + "/accumulation"},
           {"utility-vectors", 0, "N", "sampled: trace about N utility vectors at most (default 2097152); "
-                                      "under it the field is exact"}};
+                                      "under it the field is exact", echo + "/max_utility_vectors"}};
 }
 
 void parse_accumulation(const Args& args, nbv::Config& config) {
   if (args.has("accumulation")) config.accumulation = utility::parse_accumulation(args.get("accumulation"));
   config.max_utility_vectors = std::size_t(
       args.integer("utility-vectors", (long long)config.max_utility_vectors, 7, std::numeric_limits<long long>::max()));
-}
-
-Json accumulation_json(const nbv::Config& config) {
-  return {{"accumulation", utility::to_string(config.accumulation)},
-          {"max_utility_vectors", config.max_utility_vectors}};
 }
 
 double parse_target_size(const Args& args, double fallback) {
@@ -201,7 +206,10 @@ sim::Scene scene_from(const std::string& source, const Args& args) {
   const std::string prefix = "builtin:";
   if (source.rfind(prefix, 0) == 0) {
     sim::Scene s = sim::builtin_scene(source.substr(prefix.size()));
-    if (args.has("scene-info")) s.info = sim::read_scene_info(args.get("scene-info"));
+    if (args.has("scene-info")) {
+      s.info = sim::read_scene_info(args.get("scene-info"));
+      s.info_path = args.get("scene-info");
+    }
     return s;
   }
   return sim::load_scene(source, args.has("scene-info") ? args.get("scene-info") : "");

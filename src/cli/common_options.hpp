@@ -18,8 +18,9 @@ namespace fvx::cli {
 std::vector<OptionSpec> options(std::initializer_list<std::vector<OptionSpec>> tables);
 
 /// --intrinsics, --fx, --fy, --cx, --cy, --depth-scale; with `with_size` also --width and
-/// --height (for commands that render images).
-std::vector<OptionSpec> intrinsics_options(bool with_size);
+/// --height (for commands that render images). `echo`: the report's pointer to the
+/// intrinsics object (the option groups below take their config object's pointer).
+std::vector<OptionSpec> intrinsics_options(bool with_size, const std::string& echo);
 
 /// The intrinsics the user gave (file, then flags on top), or empty when none was given.
 /// Throws UsageError naming `command` when the result is invalid.
@@ -28,7 +29,7 @@ std::optional<io::Intrinsics> parse_intrinsics(const Args& args, const std::stri
 
 /// --sensor FILE, --depth-min, --depth-max and the intrinsics options with the image size:
 /// a depth camera for planning.
-std::vector<OptionSpec> depth_camera_options();
+std::vector<OptionSpec> depth_camera_options(const std::string& echo);
 /// The sensor file (default Kinect v1), then the flags on top. UsageError when invalid.
 io::DepthCamera parse_depth_camera(const Args& args, const std::string& command);
 
@@ -48,7 +49,9 @@ void check_arm_options(const Args& args, const std::string& command);
 /// and the arm (FileError; Error when the URDF is not the one the map was built from).
 /// Call it before any long work.
 void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& out);
-Json capmap_json(const Args& args, const ArmInputs& in);
+/// The capability map as loaded (file, links, hash, voxel, directions), where its base stands
+/// and the URDF; null without one.
+Json capmap_json(const std::string& path, const std::string& urdf_path, const ArmInputs& in);
 /// The same from paths (a session's manifest): the capability map, the URDF (may be empty)
 /// and the base pose. FileError, or Error when the URDF is not the map's.
 void load_arm_files(const std::string& capmap_path, const std::string& urdf_path,
@@ -64,24 +67,22 @@ double parse_resolution(const Args& args, double fallback);
 inline constexpr double kDefaultResolution_m = 0.025;  ///< the paper's 2.5 cm (pipeline::Config)
 
 /// --far-voids-only and --near-voids (the default of every command; kept for scripts).
-std::vector<OptionSpec> near_voids_options();
+std::vector<OptionSpec> near_voids_options(const std::string& echo);
 /// nbv::Config::count_near_void_cells from them, `fallback` (a session's) when neither is
 /// given; UsageError when both are.
 bool parse_near_voids(const Args& args, bool fallback);
 
 /// --target-size M: the searched object's smallest extent, metres; only void cells that
 /// could hide it count (voids/width.hpp). 0 (the default): every void cell.
-std::vector<OptionSpec> target_size_options();
+std::vector<OptionSpec> target_size_options(const std::string& echo);
 /// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp).
 /// The planner: --strategy NAME, or its alias --planner (explore's and replay's name before
 /// one name served every command); `fallback` when neither is given.
 nbv::Strategy parse_strategy_option(const Args& args, const std::string& command, nbv::Strategy fallback);
 
-std::vector<OptionSpec> accumulation_options();
+std::vector<OptionSpec> accumulation_options(const std::string& echo);
 /// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
 void parse_accumulation(const Args& args, nbv::Config& config);
-/// {"accumulation": …, "max_utility_vectors": …} for a report's config.
-Json accumulation_json(const nbv::Config& config);
 /// The value of --target-size if given, else `fallback`; UsageError outside [0, 10] m.
 double parse_target_size(const Args& args, double fallback);
 

@@ -12,7 +12,14 @@ struct OptionSpec {
   char short_name;         ///< 0 when there is none
   const char* arg;         ///< metavariable ("M", "FILE"); nullptr for a flag
   const char* help;        ///< one line: meaning, unit, default
+  /// Where the report holds the option's effective value, as a JSON pointer
+  /// ("/config/pipeline/resolution_m"), or kNotASetting for an option that names an output or
+  /// changes only how results are shown. A test checks every command's report against it.
+  std::string echo;
 };
+
+/// OptionSpec::echo of an option that sets nothing a report would echo (-o, --help, --format).
+inline const char* const kNotASetting = "-";
 
 struct CommandSpec {
   const char* name;                 ///< "integrate"
