@@ -316,7 +316,8 @@ int run_explore(const Args& args) {
   progress.finish();
 
   if (format == Format::json) {
-    write_report(run_report(args, config, render_config, scene.info_path, arm_inputs, dir.string(), result, score, rows), "");
+    write_report(
+        run_report(args, config, render_config, scene.info_path, arm_inputs, dir.string(), result, score, rows), "");
   } else {
     print_rows(rows, kColumns, format, std::cout);
     if (format == Format::markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
