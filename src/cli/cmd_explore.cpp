@@ -66,16 +66,8 @@ const CommandSpec kExploreSpec = {
                  {"threads", 0, "N", "threads for rendering and the search (default 0: all cores)",
                   "/config/pipeline/nbv/threads"},
              },
-             near_voids_options("/config/pipeline/nbv"),
-             target_size_options("/config/pipeline"),
-             accumulation_options("/config/pipeline/nbv"),
-             depth_camera_options("/config/pipeline/nbv"),
-             {
-                 {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
-                                        "byte for byte)", "-"},
-                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
-                 {"help", 'h', nullptr, "show this help", "-"},
-             }})};
+             search_model_options("/config/pipeline", "/config/pipeline/nbv"),
+             session_report_options()})};
 
 namespace {
 
@@ -192,8 +184,7 @@ Json run_report(const Args& args, const session::ExploreConfig& config, const si
   report["config"]["depth_noise_m_per_m2"] = render_config.noise_m_per_m2;
   report["inputs"] = {{"scene", args.positional[0]},
                       {"scene_info", scene_info_path.empty() ? Json(nullptr) : Json(scene_info_path)},
-                      {"capmap", capmap_json(args.has("capmap") ? args.get("capmap") : "",
-                                             args.has("arm") ? args.get("arm") : "", arm_inputs)},
+                      {"capmap", capmap_json(args, arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
   report["results"] = {{"session", dir}, {"views", result.views}, {"end", result.end},
                        {"utility_exhausted", result.utility_exhausted},

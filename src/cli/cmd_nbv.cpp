@@ -64,10 +64,7 @@ const CommandSpec kNbvSpec = {
                  {"threads", 0, "N", "threads for accumulation and scoring (default 0: all cores; same result)",
                   "/config/threads"},
              },
-             near_voids_options("/config"),
-             target_size_options("/config"),
-             accumulation_options("/config"),
-             depth_camera_options("/config"),
+             search_model_options("/config", "/config"),
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
                                               "yellow, green (high) by rank; pruned cells grey", "-"},
@@ -338,8 +335,7 @@ int run_nbv(const Args& args) {
                                  reach ? std::optional<Eigen::Isometry3d>(T_world_base) : std::nullopt);
   report["inputs"] = {{"map", args.positional[0]},
                       {"resolution_m", R},
-                      {"capmap", capmap_json(args.has("capmap") ? args.get("capmap") : "",
-                                             args.has("arm") ? args.get("arm") : "", arm_inputs)},
+                      {"capmap", capmap_json(args, arm_inputs)},
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
   report["results"] = nbv_results_json(r, a, R, arm ? arm->joint_names() : std::vector<std::string>{},
                                        config.strategy, args.has("timing"));

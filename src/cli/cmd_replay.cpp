@@ -65,16 +65,8 @@ const CommandSpec kReplaySpec = {
                  {"seed", 0, "N", "seed of the planner (default 1, or the session's)", "/config/pipeline/nbv/seed"},
                  {"threads", 0, "N", "threads for the search (default 0: all cores)", "/config/pipeline/nbv/threads"},
              },
-             near_voids_options("/config/pipeline/nbv"),
-             target_size_options("/config/pipeline"),
-             accumulation_options("/config/pipeline/nbv"),
-             depth_camera_options("/config/pipeline/nbv"),
-             {
-                 {"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
-                                        "byte for byte)", "-"},
-                 {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
-                 {"help", 'h', nullptr, "show this help", "-"},
-             }})};
+             search_model_options("/config/pipeline", "/config/pipeline/nbv"),
+             session_report_options()})};
 
 namespace {
 

@@ -155,6 +155,22 @@ Json capmap_json(const std::string& path, const std::string& urdf_path, const Ar
           {"arm", urdf_path.empty() ? Json(nullptr) : Json(urdf_path)}};
 }
 
+Json capmap_json(const Args& args, const ArmInputs& in) {
+  return capmap_json(args.has("capmap") ? args.get("capmap") : "", args.has("arm") ? args.get("arm") : "", in);
+}
+
+std::vector<OptionSpec> search_model_options(const std::string& pipeline_echo, const std::string& nbv_echo) {
+  return options({near_voids_options(nbv_echo), target_size_options(pipeline_echo), accumulation_options(nbv_echo),
+                  depth_camera_options(nbv_echo)});
+}
+
+std::vector<OptionSpec> session_report_options() {
+  return {{"timing", 0, nullptr, "add per-stage times (seconds) to the reports (without it they repeat "
+                                 "byte for byte)", "-"},
+          {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
+          {"help", 'h', nullptr, "show this help", "-"}};
+}
+
 double parse_depth_noise(const Args& args) {
   const std::string model = args.has("noise") ? args.get("noise") : "none";
   if (model == "kinect") return 1.4e-3;

@@ -8,6 +8,7 @@
 #include "fvx/capmap/capability_map.hpp"
 #include "fvx/io/intrinsics.hpp"
 #include "fvx/nbv/nbv.hpp"
+#include "fvx/pipeline/pipeline.hpp"
 #include "fvx/sim/scene.hpp"
 #include "options.hpp"
 #include "report.hpp"
@@ -52,6 +53,8 @@ void load_arm_inputs(const Args& args, const std::string& command, ArmInputs& ou
 /// The capability map as loaded (file, links, hash, voxel, directions), where its base stands
 /// and the URDF; null without one.
 Json capmap_json(const std::string& path, const std::string& urdf_path, const ArmInputs& in);
+/// The same with the paths given as --capmap and --arm.
+Json capmap_json(const Args& args, const ArmInputs& in);
 /// The same from paths (a session's manifest): the capability map, the URDF (may be empty)
 /// and the base pose. FileError, or Error when the URDF is not the map's.
 void load_arm_files(const std::string& capmap_path, const std::string& urdf_path,
@@ -64,13 +67,21 @@ double parse_depth_noise(const Args& args);
 /// --resolution M, metres in [0.001, 1]; `fallback` when absent. One range and, through
 /// kDefaultResolution_m, one default for every command.
 double parse_resolution(const Args& args, double fallback);
-inline constexpr double kDefaultResolution_m = 0.025;  ///< the paper's 2.5 cm (pipeline::Config)
+inline const double kDefaultResolution_m = pipeline::Config{}.resolution_m;  ///< the paper's 2.5 cm
 
 /// --far-voids-only and --near-voids (the default of every command; kept for scripts).
 std::vector<OptionSpec> near_voids_options(const std::string& echo);
 /// nbv::Config::count_near_void_cells from them, `fallback` (a session's) when neither is
 /// given; UsageError when both are.
 bool parse_near_voids(const Args& args, bool fallback);
+
+/// What the search models, for commands that search: --far-voids-only/--near-voids,
+/// --target-size, --accumulation/--utility-vectors and the depth camera; `pipeline_echo` and
+/// `nbv_echo` point at the report's pipeline and search configs.
+std::vector<OptionSpec> search_model_options(const std::string& pipeline_echo, const std::string& nbv_echo);
+
+/// --timing, --progress and --help of the session commands (explore, replay).
+std::vector<OptionSpec> session_report_options();
 
 /// --target-size M: the searched object's smallest extent, metres; only void cells that
 /// could hide it count (voids/width.hpp). 0 (the default): every void cell.
