@@ -16,7 +16,7 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
   for (const auto& v : voids) void_cells += v.cells.size();
   const map::KeyIndex void_of(void_cells, [&](auto&& visit) {
     for (const auto& v : voids)
-      for (const auto& k : v.cells) visit(frontiers::pack(k), std::uint32_t(v.id));
+      for (const auto& k : v.cells) visit(map::pack(k), std::uint32_t(v.id));
   });
   std::vector<FrontierVoid> out(voids.size());
   for (const auto& v : voids) {
@@ -32,7 +32,7 @@ std::vector<FrontierVoid> pair_frontier_voids(const std::vector<voids::VoidClust
             if (moved == 0 || moved == 3) continue;  // faces and edges, not corners
             const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
             if (x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) continue;
-            const std::uint32_t id = void_of.find(frontiers::pack({std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)}));
+            const std::uint32_t id = void_of.find(map::pack({std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)}));
             if (id == map::KeyIndex::kMissing) continue;
             std::vector<int>& ids = out[id].frontier_ids;
             if (ids.empty() || ids.back() != c.id) ids.push_back(c.id);  // clusters come in id order

@@ -21,7 +21,6 @@ Json config_json(const Config& c) {
           {"climb_rounds", c.climb_rounds},
           {"climb_step_m", c.climb_step_m},
           {"climb_angle_deg", c.climb_angle_deg},
-          {"hidden_void_cells", c.hidden_void_cells.size()},
           {"view_bounds_m", bounds_json(c.view_bounds_m)},
           {"exhaustive_rolls", c.exhaustive_rolls},
           {"random_tries", c.random_tries},

@@ -53,8 +53,6 @@ std::vector<std::string> Config::validate() const {
 
 namespace detail {
 
-namespace {
-
 /// Algorithm 1 over the search's grid, with the loop's hidden void cells left out of u_i.
 utility::Field accumulate_field(const Search& s, Result& result) {
   const auto t0 = Clock::now();
@@ -73,13 +71,15 @@ utility::Field accumulate_field(const Search& s, Result& result) {
   // Void cells a taken view left hidden no longer count in U; they leave u_i too, or a void
   // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
   const std::optional<frontier_voids::Analysis> visible =
-      s.config.hidden_void_cells.empty() ? std::nullopt : std::optional(s.visible_utility());
+      s.any_hidden ? std::optional(s.visible_utility()) : std::nullopt;
   utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
   result.utility_vectors = field.vectors;
   result.exact_utility_vectors = field.exact_vectors;
   result.timing.accumulation_s = seconds_since(t0);
   return field;
 }
+
+namespace {
 
 /// Orientations at the candidate cells in utility order, aimed at the voids whose utility
 /// reached each cell, until N valid poses.
@@ -123,9 +123,7 @@ std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, con
 
 // The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
-Result select_frontier_void(Search& s, Result result) {
-  const utility::Field field = accumulate_field(s, result);
-
+Result select_frontier_void(Search& s, const utility::Field& field, Result result) {
   auto t0 = Clock::now();
   Pruning& pruning = result.pruning;
   const std::vector<std::size_t> candidates = s.prune(field.util_m3, result);
@@ -164,11 +162,13 @@ struct PreparedSearch::State {
   Config config;
   Result result;
   std::unique_ptr<detail::Search> search;  // empty: result says why there is nothing to search
-  bool ran = false;
+  std::optional<utility::Field> field;     // after utility(), for the frontier-void strategy
+  bool accumulated = false, ran = false;
 };
 
 PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
-                               std::optional<Reach> reach, Config config)
+                               std::optional<Reach> reach, Config config,
+                               const std::vector<map::VoxelKey>& hidden_void_cells)
     : state_(std::make_unique<State>()) {
   State& st = *state_;
   st.start = detail::Clock::now();
@@ -195,7 +195,7 @@ PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_void
   }
   const auto t0 = detail::Clock::now();
   if (st.config.progress) st.config.progress("dense grid and distance transform", 0, 0);
-  st.search = std::make_unique<detail::Search>(map, analysis, st.reach, st.config);
+  st.search = std::make_unique<detail::Search>(map, analysis, st.reach, st.config, hidden_void_cells);
   st.result.timing.grid_s = detail::seconds_since(t0);
 }
 
@@ -203,25 +203,39 @@ PreparedSearch::PreparedSearch(PreparedSearch&&) noexcept = default;
 PreparedSearch& PreparedSearch::operator=(PreparedSearch&&) noexcept = default;
 PreparedSearch::~PreparedSearch() = default;
 
-Result PreparedSearch::run() {
-  FVX_ASSERT(state_ && !state_->ran, "PreparedSearch::run: once");
+void PreparedSearch::utility() {
+  FVX_ASSERT(state_ && !state_->accumulated, "PreparedSearch::utility: once, before viewpoints()");
+  State& st = *state_;
+  st.accumulated = true;
+  if (st.search && st.config.strategy == Strategy::FrontierVoid)
+    st.field = detail::accumulate_field(*st.search, st.result);
+}
+
+Result PreparedSearch::viewpoints() {
+  FVX_ASSERT(state_ && state_->accumulated && !state_->ran, "PreparedSearch::viewpoints: once, after utility()");
   State& st = *state_;
   st.ran = true;
   if (!st.search) return std::move(st.result);
   Result result = std::move(st.result);
   switch (st.config.strategy) {
-    case Strategy::FrontierVoid: result = detail::select_frontier_void(*st.search, std::move(result)); break;
+    case Strategy::FrontierVoid: result = detail::select_frontier_void(*st.search, *st.field, std::move(result)); break;
     case Strategy::Exhaustive: result = detail::select_exhaustive(*st.search, std::move(result)); break;
     case Strategy::Frontier: result = detail::select_frontier(*st.search, std::move(result)); break;
     case Strategy::Random: result = detail::select_random(*st.search, std::move(result)); break;
   }
+  st.field.reset();
   result.timing.total_s = detail::seconds_since(st.start);
   return result;
 }
 
+Result PreparedSearch::run() {
+  utility();
+  return viewpoints();
+}
+
 Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
-              const Config& config) {
-  return PreparedSearch(map, analysis, reach, config).run();
+              const Config& config, const std::vector<map::VoxelKey>& hidden_void_cells) {
+  return PreparedSearch(map, analysis, reach, config, hidden_void_cells).run();
 }
 
 }  // namespace fvx::nbv

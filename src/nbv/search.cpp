@@ -45,7 +45,8 @@ std::vector<Eigen::Vector3d> unknown_sides(const map::OccupancyMap& map, const f
 }  // namespace
 
 Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& analysis,
-               const std::optional<Reach>& reach_in, const Config& config_in)
+               const std::optional<Reach>& reach_in, const Config& config_in,
+               const std::vector<map::VoxelKey>& hidden_void_cells)
     : a(analysis),
       reach(reach_in),
       config(config_in),
@@ -60,8 +61,9 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
     if (!a.frontier_voids[std::size_t(v.id)].enclosed())
       for (const map::VoxelKey& k : v.cells)
         if (grid.contains(k)) void_label[grid.index(k)] = v.id;
-  for (const map::VoxelKey& k : config.hidden_void_cells)
+  for (const map::VoxelKey& k : hidden_void_cells)
     if (grid.contains(k)) void_label[grid.index(k)] = -1;
+  any_hidden = !hidden_void_cells.empty();
   occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied);
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;

@@ -32,8 +32,9 @@ struct Pose {
 };
 
 struct Search {
+  /// `hidden_void_cells`: void cells a taken view left unknown; they leave U (and u_i).
   Search(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
-         const Config& config);
+         const Config& config, const std::vector<map::VoxelKey>& hidden_void_cells);
 
   /// Position checks in the paper's order, each counted in `pruning` when it fails.
   bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
@@ -60,9 +61,10 @@ struct Search {
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
 
+  bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)
   core::LargeVector<std::uint8_t> void_mask() const;
   /// A copy of the analysis with each frontier-void's u_i counting only the void cells U
-  /// counts (config.hidden_void_cells left out).
+  /// counts (the hidden void cells left out).
   frontier_voids::Analysis visible_utility() const;
 
   /// With an arm, turns the rotation's optical axis to the nearest direction the capability
@@ -95,7 +97,10 @@ Pose moved(const Pose& from, const Eigen::Vector3d& p_world, const Eigen::Matrix
 /// rolls) and the climb (refine.cpp, Config); appends the new poses and their U.
 void refine(const Search& s, std::vector<Pose>& poses, std::vector<std::size_t>& U, Result& result);
 
-Result select_frontier_void(Search& s, Result result);
+/// Algorithm 1 (utility::accumulate) over the search's grid, timed into `result`.
+utility::Field accumulate_field(const Search& s, Result& result);
+/// The paper's method after Algorithm 1: pruning, orientations, U (Eq. 3), refinement.
+Result select_frontier_void(Search& s, const utility::Field& field, Result result);
 Result select_exhaustive(Search& s, Result result);
 Result select_frontier(Search& s, Result result);
 Result select_random(Search& s, Result result);

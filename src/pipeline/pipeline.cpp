@@ -17,6 +17,12 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 int Config::min_void_width_cells() const { return voids::void_width_for_target(target_size_m, resolution_m); }
 
+void Config::tie_to_search() {
+  filter.depth_min_m = nbv.sensor.depth_min_m;
+  filter.depth_max_m = nbv.sensor.depth_max_m;
+  clusters.seed = nbv.seed;
+}
+
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems;
   if (!(resolution_m > 0.0 && resolution_m <= 10.0)) problems.push_back("resolution_m must be in (0, 10] m");
@@ -123,23 +129,38 @@ void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_c
 
 nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, const std::optional<nbv::Reach>& reach,
                                    const Config& config) {
-  nbv::Config search = config.nbv;
-  search.hidden_void_cells = state.hidden_void_cells;
-  return nbv::PreparedSearch(state.map, r.analysis, reach, std::move(search));
+  return nbv::PreparedSearch(state.map, r.analysis, reach, config.nbv, state.hidden_void_cells);
 }
 
 StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
                     const std::vector<map::VoxelKey>* expected_void_cells) {
   StepResult r = integrate_step(state, std::move(scan), config);
   if (expected_void_cells) mark_hidden(state, *expected_void_cells, r);
-  // §IV-C: the next best view (Algorithm 1, pruning, Eq. 3).
-  if (config.search) {
+  if (config.search) {  // step 7, §IV-C
     const auto t0 = Clock::now();
-    r.nbv = prepare_search(state, r, reach, config).run();
+    nbv::PreparedSearch search = prepare_search(state, r, reach, config);
+    search.utility();            // Algorithm 1: utility vectors accumulated in free cells
+    r.nbv = search.viewpoints();  // pruning, orientations, U by ray casting, c* = argmax U (Eq. 3)
     r.searched = true;
     r.timing.search_s = seconds_since(t0);
   }
   return r;
+}
+
+Pipeline::Pipeline(Config config, std::optional<nbv::Reach> reach)
+    : config_(std::move(config)), reach_(std::move(reach)), state_(config_.resolution_m) {
+  throw_if_problems("pipeline", config_.validate());
+}
+
+Pipeline::Pipeline(Config config, std::optional<nbv::Reach> reach, map::OccupancyMap existing)
+    : config_(std::move(config)), reach_(std::move(reach)), state_(std::move(existing), config_) {
+  throw_if_problems("pipeline", config_.validate());
+}
+
+StepResult Pipeline::step(scan::Scan scan, const std::vector<map::VoxelKey>* expected_void_cells) {
+  Config view_config = config_;
+  view_config.nbv.seed = config_.nbv.seed + std::uint64_t(state_.steps);
+  return run_step(state_, std::move(scan), reach_, view_config, expected_void_cells);
 }
 
 }  // namespace fvx::pipeline

@@ -95,7 +95,8 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
   Eigen::Isometry3d T_true = T_start;
   Eigen::VectorXd joints = start_joints;
 
-  pipeline::State state(config.pipeline.resolution_m);
+  pipeline::Pipeline pipeline(config.pipeline, reach);
+  const pipeline::State& state = pipeline.state();
   std::mt19937_64 noise_rng(config.seed ^ 0x6A09E667F3BCC909ull);
   std::vector<map::VoxelKey> previous_voids;
   std::size_t previous_prediction = 0;
@@ -121,10 +122,7 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     scan.source = "view " + std::to_string(view);
     scan.points_sensor = record.points_sensor;
     scan.T_world_sensor = record.T_world_sensor_prior;
-    // Each view's search draws its own random numbers (the same for the same seed).
-    pipeline::Config step_config = config.pipeline;
-    step_config.nbv.seed = config.pipeline.nbv.seed + std::uint64_t(view);
-    record.step = pipeline::run_step(state, std::move(scan), reach, step_config, view > 0 ? &expected : nullptr);
+    record.step = pipeline.step(std::move(scan), view > 0 ? &expected : nullptr);
 
     record.previous_prediction = previous_prediction;
     for (const map::VoxelKey& k : previous_voids) record.revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;

@@ -9,6 +9,16 @@
 
 namespace fvx::sim {
 
+SensorConfig SensorConfig::of(const io::DepthCamera& camera, std::uint64_t seed, unsigned threads) {
+  SensorConfig c;
+  c.intrinsics = camera.intrinsics;
+  c.depth_min_m = camera.depth_min_m;
+  c.depth_max_m = camera.depth_max_m;
+  c.seed = seed;
+  c.threads = threads;
+  return c;
+}
+
 std::vector<std::string> SensorConfig::validate() const {
   std::vector<std::string> problems = intrinsics.validate();
   if (!(depth_min_m >= 0.0)) problems.push_back("depth_min_m must be >= 0 m");

@@ -8,7 +8,6 @@
 
 #include "fvx/core/error.hpp"
 #include "fvx/map/key_index.hpp"
-#include "fvx/frontiers/frontiers.hpp"  // pack
 
 namespace fvx::voids {
 
@@ -67,7 +66,7 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
                       const ClusterConfig& config) {
   const double R = map.resolution_m();
   const map::KeyIndex index(cells.size(), [&](auto&& visit) {  // cell → its index in `cells`
-    for (std::size_t i = 0; i < cells.size(); ++i) visit(frontiers::pack(cells[i]), std::uint32_t(i));
+    for (std::size_t i = 0; i < cells.size(); ++i) visit(map::pack(cells[i]), std::uint32_t(i));
   });
   std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
   std::vector<std::uint32_t> order(cells.size());
@@ -92,7 +91,7 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
             const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
             if ((!dx && !dy && !dz) || x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) continue;
             const map::VoxelKey n{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
-            const std::uint32_t j = index.find(frontiers::pack(n));
+            const std::uint32_t j = index.find(map::pack(n));
             if (j == map::KeyIndex::kMissing || owner[j] >= 0) continue;
             Moments with = m;
             with.add(map.center_of(n));

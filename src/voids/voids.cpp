@@ -8,12 +8,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fvx/frontiers/frontiers.hpp"  // pack / unpack of keys
+#include "fvx/map/key_index.hpp"
 
 namespace fvx::voids {
 
-using frontiers::pack;
-using frontiers::unpack;
+using map::pack;
+using map::unpack;
 
 namespace {
 

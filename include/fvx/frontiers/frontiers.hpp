@@ -14,17 +14,13 @@
 #include <vector>
 
 #include "fvx/map/dense_grid.hpp"
+#include "fvx/map/key_index.hpp"
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::frontiers {
 
-/// A key packed into one integer (x | y << 16 | z << 32), for hashing.
-inline std::uint64_t pack(const map::VoxelKey& k) {
-  return std::uint64_t(k.x) | std::uint64_t(k.y) << 16 | std::uint64_t(k.z) << 32;
-}
-inline map::VoxelKey unpack(std::uint64_t p) {
-  return {std::uint16_t(p & 0xFFFF), std::uint16_t(p >> 16 & 0xFFFF), std::uint16_t(p >> 32 & 0xFFFF)};
-}
+using map::pack;  // keys packed for hashing (map/key_index.hpp)
+using map::unpack;
 
 /// True when `key` is free and has an unknown face-neighbour (the definition, cell by cell).
 bool is_frontier(const map::OccupancyMap& map, const map::VoxelKey& key);

@@ -9,11 +9,21 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "fvx/core/large_vector.hpp"
 #include <utility>
 #include <vector>
 
+#include "fvx/core/large_vector.hpp"
+#include "fvx/map/occupancy_map.hpp"
+
 namespace fvx::map {
+
+/// A key packed into one integer (x | y << 16 | z << 32), for hashing and KeyIndex.
+inline std::uint64_t pack(const VoxelKey& k) {
+  return std::uint64_t(k.x) | std::uint64_t(k.y) << 16 | std::uint64_t(k.z) << 32;
+}
+inline VoxelKey unpack(std::uint64_t p) {
+  return {std::uint16_t(p & 0xFFFF), std::uint16_t(p >> 16 & 0xFFFF), std::uint16_t(p >> 32 & 0xFFFF)};
+}
 
 class KeyIndex {
  public:

@@ -81,10 +81,6 @@ struct Config {
   int climb_rounds = 0;
   double climb_step_m = 0.05;
   double climb_angle_deg = 4.0;
-  /// Void cells that a view already taken looked at without revealing them (something the
-  /// map does not hold yet blocks them from there); they no longer count in U. Filled by the
-  /// exploration loop (pipeline::State), empty for a single search.
-  std::vector<map::VoxelKey> hidden_void_cells;
   /// The sensor stays in this box (metres); default: the box of the map's known cells.
   std::optional<Eigen::AlignedBox3d> view_bounds_m;
   int exhaustive_rolls = 2;           ///< exhaustive: rolls per direction (0, 90°, … over 180°)
@@ -115,7 +111,7 @@ struct Config {
   std::vector<std::string> validate() const;
 };
 
-/// Every setting of the search as a report echoes it (hidden_void_cells as their count; the
+/// Every setting of the search as a report echoes it (the
 /// progress callback and keep_utility_field are not settings of the result).
 Json config_json(const Config& c);
 
@@ -193,15 +189,24 @@ struct Search;
 /// A search whose reading of the map is done: the constructor copies what the search needs
 /// (the dense grid, its distance transform, the frontier strategy's unknown sides), so the
 /// map may change while run() goes on — fvx replay integrates the next scan meanwhile.
-/// `analysis` must outlive it; reach and config are copied.
+/// `analysis` must outlive it; reach and config are copied. `hidden_void_cells` (key order):
+/// void cells that a view already taken looked at without revealing them (something the map
+/// does not hold yet blocks them from there); they no longer count in U or u_i. The
+/// exploration loop keeps them (pipeline::State); empty for a single search.
 class PreparedSearch {
  public:
   PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, std::optional<Reach> reach,
-                 Config config);
+                 Config config, const std::vector<map::VoxelKey>& hidden_void_cells = {});
   PreparedSearch(PreparedSearch&&) noexcept;
   PreparedSearch& operator=(PreparedSearch&&) noexcept;
   ~PreparedSearch();
-  /// The search itself (select()); once.
+  /// Stage `utility` (Algorithm 1): the utility field over the grid, for the frontier-void
+  /// strategy (the others have none). Once, before viewpoints().
+  void utility();
+  /// Stage `viewpoints` and the choice (Eq. 3): pruning, orientations, U by ray casting,
+  /// refinement; the ranked views. Once, after utility().
+  Result viewpoints();
+  /// utility(), then viewpoints().
   Result run();
 
  private:
@@ -213,6 +218,7 @@ class PreparedSearch {
 /// frontier-voids within the search space). Deterministic for a given seed, on any number
 /// of threads. The same as PreparedSearch(map, analysis, reach, config).run().
 Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
-              const std::optional<Reach>& reach, const Config& config);
+              const std::optional<Reach>& reach, const Config& config,
+              const std::vector<map::VoxelKey>& hidden_void_cells = {});
 
 }  // namespace fvx::nbv

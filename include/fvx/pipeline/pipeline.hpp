@@ -43,6 +43,10 @@ struct Config {
   /// The cube width, cells, that target_size_m fills at resolution_m
   /// (voids::void_width_for_target; frontier_voids::analyse); 1 for target size 0.
   int min_void_width_cells() const;
+  /// For the loops, once the search's sensor and seed are set: the scan filter keeps the
+  /// sensor's depth range (what the search models is what is integrated) and region growing
+  /// takes the search's seed. One call instead of copies in each command.
+  void tie_to_search();
   std::vector<std::string> validate() const;
 };
 
@@ -63,7 +67,7 @@ struct State {
   /// The scans integrated so far, one point per cell of half the registration voxel.
   registration::TargetCloud registration_target;
   /// Void cells a scan was expected to reveal (taken at a chosen view) that stayed unknown:
-  /// hidden from there, they leave U (nbv::Config::hidden_void_cells). Key order.
+  /// hidden from there, they leave U (nbv::PreparedSearch's hidden_void_cells). Key order.
   std::vector<map::VoxelKey> hidden_void_cells;
   int steps = 0;
   /// The last step updated frontier_set and void_set (Config::analyse); otherwise the next
@@ -111,5 +115,30 @@ nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, cons
 /// integrate_step, mark_hidden, then the search (when config.search), in this order.
 StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,
                     const std::vector<map::VoxelKey>* expected_void_cells = nullptr);
+
+/// The loop's engine: the validated config, the arm's reach and the state between steps
+/// (the map, the frontier and void sets, the registration target, the hidden void cells).
+/// fvx explore and fvx integrate (integrate_files) run through it; fvx replay uses the step's
+/// parts above (integrate_step, mark_hidden, prepare_search) to overlap a view's search
+/// with the next scan.
+class Pipeline {
+ public:
+  /// UsageError listing every problem of `config`. `reach` (with the capability map and arm
+  /// it points to) must outlive the pipeline.
+  Pipeline(Config config, std::optional<nbv::Reach> reach);
+  /// Continues `existing` (State's constructor: its occupied cells seed registration).
+  Pipeline(Config config, std::optional<nbv::Reach> reach, map::OccupancyMap existing);
+  /// run_step with this view's own seed, config.nbv.seed + the steps so far, so that each
+  /// view's search draws its own random numbers (the same for the same seed).
+  StepResult step(scan::Scan scan, const std::vector<map::VoxelKey>* expected_void_cells = nullptr);
+  const State& state() const { return state_; }
+  const map::OccupancyMap& map() const { return state_.map; }
+  const Config& config() const { return config_; }
+
+ private:
+  Config config_;
+  std::optional<nbv::Reach> reach_;
+  State state_;
+};
 
 }  // namespace fvx::pipeline

@@ -31,6 +31,8 @@ struct SensorConfig {
   unsigned threads = 0;           ///< 0: all cores
 
   std::vector<std::string> validate() const;
+  /// The virtual twin of `camera` (its intrinsics and depth range), seeded, noiseless.
+  static SensorConfig of(const io::DepthCamera& camera, std::uint64_t seed, unsigned threads);
 };
 
 struct Frame {

@@ -354,15 +354,15 @@ TEST(Nbv, HiddenVoidCellsLeaveAlgorithmOnesUtility) {
   ASSERT_FALSE(largest->enclosed());
   std::size_t its_vectors = 0;  // Algorithm 1: one vector per corner and frontier cell
   for (const int id : largest->frontier_ids) its_vectors += 7 * box.analysis.frontier_clusters[std::size_t(id)].cells.size();
-  config.hidden_void_cells = box.analysis.void_clusters[std::size_t(largest->void_id)].cells;
-  const Result one_hidden = select(box.map, box.analysis, std::nullopt, config);
+  std::vector<map::VoxelKey> hidden = box.analysis.void_clusters[std::size_t(largest->void_id)].cells;
+  const Result one_hidden = select(box.map, box.analysis, std::nullopt, config, hidden);
   EXPECT_EQ(one_hidden.utility_vectors, all_visible.utility_vectors - its_vectors);
-  config.hidden_void_cells.clear();
+  hidden.clear();
   for (const auto& fv : box.analysis.frontier_voids)
     if (!fv.enclosed())
-      for (const auto& k : box.analysis.void_clusters[std::size_t(fv.void_id)].cells) config.hidden_void_cells.push_back(k);
-  std::sort(config.hidden_void_cells.begin(), config.hidden_void_cells.end());
-  const Result all_hidden = select(box.map, box.analysis, std::nullopt, config);
+      for (const auto& k : box.analysis.void_clusters[std::size_t(fv.void_id)].cells) hidden.push_back(k);
+  std::sort(hidden.begin(), hidden.end());
+  const Result all_hidden = select(box.map, box.analysis, std::nullopt, config, hidden);
   EXPECT_EQ(all_hidden.utility_vectors, 0u);
   EXPECT_TRUE(all_hidden.views.empty());
 }
