@@ -3,19 +3,24 @@
 #include <chrono>
 #include <csignal>
 #include <cmath>
-#include <random>
 
 #include "command_table.hpp"
+#include "fvx/core/atomic_file.hpp"  // lowercase_extension
+#include "common_options.hpp"
 #include "fvx/capmap/build.hpp"
 #include "fvx/capmap/evaluate.hpp"
-#include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/core/parse.hpp"
-#include "fvx/io/visual.hpp"
+#include "fvx/report/capmap.hpp"
 #include "report.hpp"
 
 namespace fvx::cli {
+
+namespace {
+const capmap::BuildConfig kBuild;  ///< the defaults --help shows
+constexpr int kEvalSamples = 2000;  ///< eval: queries for precision and for recall each
+}  // namespace
 
 const CommandSpec kCapmapSpec = {
     "capmap",
@@ -29,22 +34,26 @@ const CommandSpec kCapmapSpec = {
         {"mount", 0, "x,y,z,roll,pitch,yaw", "build: sensor mount after the tip, metres and degrees "
                                              "(default 0)", "/results/header/mount_xyz_rpy"},
         {"axis", 0, "x,y,z", "build: viewing axis in the sensor frame (default 0,0,1)", "/results/header/viewing_axis"},
-        {"voxel", 0, "M", "build: voxel edge, metres (default 0.05)", "/results/header/voxel_m"},
-        {"directions", 0, "N", "build: viewing directions per voxel (default 200)", "/results/header/directions"},
-        {"position-tolerance", 0, "M", "build: IK position tolerance, metres (default 0.005)",
-         "/results/header/position_tolerance_m"},
+        {"voxel", 0, "M", "build: voxel edge, metres", "/results/header/voxel_m", dflt(kBuild.voxel_m), above(0, 10)},
+        {"directions", 0, "N", "build: viewing directions per voxel", "/results/header/directions",
+         dflt(kBuild.directions), in(1, 4096)},
+        {"position-tolerance", 0, "M", "build: IK position tolerance, metres", "/results/header/position_tolerance_m",
+         dflt(kBuild.position_tolerance_m), above(0, 1)},
         {"angle-tolerance", 0, "DEG", "build: IK angle tolerance, degrees (default: half the mean "
-                                      "direction spacing)", "/results/header/angle_tolerance_deg"},
-        {"seed", 0, "N", "build, eval: random seed (default 1)", "/config/seed"},
-        {"fk-samples", 0, "N", "build: configurations of the forward pre-pass (default 400000)", "/config/fk_samples"},
-        {"restarts", 0, "N", "build: IK restarts per bit after the seed (default 8)", "/config/ik_restarts"},
+                                      "direction spacing)", "/results/header/angle_tolerance_deg", "", above(0, 90)},
+        seed_option("/config/seed", "build, eval: random seed", kBuild.seed),
+        {"fk-samples", 0, "N", "build: configurations of the forward pre-pass", "/config/fk_samples",
+         dflt(kBuild.fk_samples), in(1, 1e9)},
+        {"restarts", 0, "N", "build: IK restarts per bit after the seed", "/config/ik_restarts",
+         dflt(kBuild.ik_restarts), in(0, 1000)},
         {"exhaustive", 0, nullptr, "build: IK for every voxel and direction (a slow baseline)", "/config/exhaustive"},
-        {"threads", 0, "N", "build: threads (default 0: all cores)", "/config/threads"},
+        threads_option("/config/threads", "build: threads"),
         {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later",
          "/results/header/shard_index"},
         {"point", 0, "x,y,z", "query: a position in the base frame, metres", "/results/point_m"},
         {"direction", 0, "x,y,z", "query: a viewing direction (need not be unit)", "/results/direction"},
-        {"samples", 0, "N", "eval: queries for precision and for recall each (default 2000)", "/config/samples"},
+        {"samples", 0, "N", "eval: queries for precision and for recall each", "/config/samples", dflt(kEvalSamples),
+         in(1, 1e8)},
         {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
         {"help", 'h', nullptr, "show this help", "-"},
     }};
@@ -62,16 +71,6 @@ Eigen::Vector3d vec3(const Args& args, const std::string& name) {
 std::string need(const Args& args, const std::string& name, const std::string& action) {
   if (!args.has(name)) throw UsageError("fvx capmap " + action + ": --" + name + " is required");
   return args.get(name);
-}
-
-Json header_json(const capmap::CapabilityHeader& h) {
-  return {{"base_link", h.base_link},   {"tip_link", h.tip_link},   {"mount_xyz_rpy", h.mount_xyz_rpy},
-          {"viewing_axis", vec_json(h.viewing_axis)},  {"urdf_hash", h.urdf_hash},
-          {"voxel_m", h.voxel_m},       {"origin_m", vec_json(h.origin_m)},      {"dims", h.dims},
-          {"directions", h.directions}, {"position_tolerance_m", h.position_tolerance_m},
-          {"angle_tolerance_deg", h.angle_tolerance_rad * 180.0 / M_PI},      {"method", h.method},
-          {"seed", h.seed},             {"shard_index", h.shard_index},     {"shard_count", h.shard_count},
-          {"fvx_version", h.fvx_version}};
 }
 
 capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std::string& tip, const Args& args) {
@@ -93,14 +92,14 @@ int build(const Args& args, Json& report) {
   if (lowercase_extension(output) != ".fcm") throw UsageError("fvx capmap build: --output " + output + ": expected a .fcm file");
   const capmap::Arm arm = load_arm(args.positional[1], need(args, "base", "build"), need(args, "tip", "build"), args);
   capmap::BuildConfig c;
-  c.voxel_m = args.number("voxel", c.voxel_m, 0.0, 10.0, true);
-  c.directions = int(args.integer("directions", c.directions, 1, 4096));
-  c.position_tolerance_m = args.number("position-tolerance", c.position_tolerance_m, 0.0, 1.0, true);
-  c.angle_tolerance_rad = args.number("angle-tolerance", 0.0, 0.0, 90.0, true) * M_PI / 180.0;
-  c.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
-  c.fk_samples = std::size_t(args.integer("fk-samples", 400000, 1, 1000000000));
-  c.ik_restarts = int(args.integer("restarts", c.ik_restarts, 0, 1000));
-  c.threads = unsigned(args.integer("threads", 0, 0, 256));
+  args.read("voxel", c.voxel_m);
+  args.read("directions", c.directions);
+  args.read("position-tolerance", c.position_tolerance_m);
+  c.angle_tolerance_rad = args.number("angle-tolerance", 0.0) * M_PI / 180.0;
+  args.read("seed", c.seed);
+  args.read("fk-samples", c.fk_samples);
+  args.read("restarts", c.ik_restarts);
+  args.read("threads", c.threads);
   c.exhaustive = args.has("exhaustive");
   if (args.has("shard")) {
     const std::string s = args.get("shard");
@@ -133,7 +132,7 @@ int build(const Args& args, Json& report) {
                       {"threads", c.threads}, {"exhaustive", c.exhaustive}};
   report["inputs"] = {{"urdf", args.positional[1]}, {"joints", arm.joint_names()}};
   report["results"] = {{"output", output},
-                       {"header", header_json(map.header())},
+                       {"header", capmap_header_json(map.header())},
                        {"voxels", map.voxel_count()},
                        {"bits", stats.reached},
                        {"candidates_checked", stats.candidates},
@@ -145,17 +144,8 @@ int build(const Args& args, Json& report) {
 int info(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx capmap info: give one map");
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
-  std::vector<std::size_t> histogram(10, 0);  // reachability index in 10 % bins
-  std::size_t bits = 0;
-  for (const auto& [voxel, words] : map.voxels()) {
-    std::size_t n = 0;
-    for (std::uint64_t w : words) n += std::size_t(__builtin_popcountll(w));
-    bits += n;
-    histogram[std::min<std::size_t>(9, n * 10 / std::size_t(map.header().directions))] += 1;
-  }
   report["inputs"] = {{"map", args.positional[1]}};
-  report["results"] = {{"header", header_json(map.header())}, {"voxels", map.voxel_count()}, {"bits", bits},
-                       {"reachability_index_histogram", {{"bin_width_percent", 10}, {"voxels", histogram}}}};
+  report["results"] = capmap_info_json(map);
   return 0;
 }
 
@@ -163,19 +153,14 @@ int query(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx capmap query: give one map");
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
   const Eigen::Vector3d p = vec3(args, "point");
-  Json r = {{"point_m", vec_json(p)}, {"inside_grid", map.voxel_of(p) >= 0},
-            {"reachability_index", map.reachability_index(p)}};
+  std::optional<Eigen::Vector3d> direction;
   if (args.has("direction")) {
-    const Eigen::Vector3d d = vec3(args, "direction");
-    if (d.norm() < 1e-9) throw UsageError("--direction must not be zero");
-    r["direction"] = vec_json(d.normalized());
-    r["reachable"] = map.reachable(p, d.normalized());
+    direction = vec3(args, "direction");
+    if (direction->norm() < 1e-9) throw UsageError("--direction must not be zero");
+    direction->normalize();
   }
-  Json dirs = Json::array();
-  for (int i : map.reachable_directions(p)) dirs.push_back(vec_json(map.directions()[i]));
-  r["reachable_directions"] = dirs;
   report["inputs"] = {{"map", args.positional[1]}};
-  report["results"] = r;
+  report["results"] = capmap_query_json(map, p, direction);
   return 0;
 }
 
@@ -186,8 +171,8 @@ int eval(const Args& args, Json& report) {
   const capmap::Arm arm = capmap::Arm::from_urdf(args.positional[2], capmap::arm_config_of(h));
   std::vector<std::string> warnings;
   if (arm.urdf_hash() != h.urdf_hash) warnings.push_back("the URDF differs from the one the map was built from");
-  const int samples = int(args.integer("samples", 2000, 1, 100000000));
-  const auto seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  const int samples = int(args.integer("samples", kEvalSamples));
+  const auto seed = std::uint64_t(args.integer("seed", (long long)kBuild.seed));
   const capmap::Evaluation e = capmap::evaluate(map, arm, samples, seed);
   report["config"] = {{"seed", seed}, {"samples", samples}};
   report["inputs"] = {{"map", args.positional[1]}, {"urdf", args.positional[2]}};
@@ -203,18 +188,9 @@ int export_cloud(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx capmap export: give one map");
   const std::string output = need(args, "output", "export");
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
-  std::vector<Eigen::Vector3f> points;
-  std::vector<io::Rgb> colors;
-  for (const auto& [voxel, words] : map.voxels()) {
-    std::size_t n = 0;
-    for (std::uint64_t w : words) n += std::size_t(__builtin_popcountll(w));
-    const double ri = double(n) / map.header().directions;  // 0 … 1: blue (low) to red (high)
-    points.push_back(map.center_of(voxel).cast<float>());
-    colors.push_back({std::uint8_t(255 * std::min(1.0, 2 * ri)), 60, std::uint8_t(255 * std::max(0.0, 1 - 2 * ri))});
-  }
-  io::write_colored_cloud(output, points, colors);
+  const std::size_t voxels = write_capmap_cloud(output, map);
   report["inputs"] = {{"map", args.positional[1]}};
-  report["results"] = {{"output", output}, {"voxels", points.size()}};
+  report["results"] = {{"output", output}, {"voxels", voxels}};
   return 0;
 }
 

@@ -38,9 +38,7 @@ int run_frontiers(const Args& args) {
   report["config"] = {{"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
                       {"definition", "free cells with an unknown face-neighbour; clusters 26-connected"}};
   report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", map.resolution_m()}};
-  report["results"] = {{"bounds_m", bounds_json(a.bounds_m)},
-                       {"frontier_cells", a.frontier_cells.size()},
-                       {"frontier_clusters", frontier_clusters_json(a.frontier_clusters)}};
+  report["results"] = frontiers_results_json(a);
   if (a.frontier_cells.empty() && a.warnings.empty()) a.warnings.push_back("no frontier cell in the search space");
   if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;

@@ -2,7 +2,6 @@
 // integrate, frontiers and voids, next best view; the paper's per-view table (Tables I and II),
 // per-view maps and reports, and a plot of the known and void volume.
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -10,17 +9,18 @@
 #include "command_table.hpp"
 #include "common_options.hpp"
 #include "fvx/core/error.hpp"
-#include "fvx/io/visual.hpp"
 #include "fvx/scan/load.hpp"
 #include "fvx/session/recorder.hpp"
-#include "fvx/session/replay.hpp"
-#include "fvx/session/rows.hpp"
-#include "fvx/session/session.hpp"
-#include "fvx/voids/width.hpp"
-#include "session_output.hpp"
+#include "fvx/session/replay_inputs.hpp"
+#include "fvx/report/nbv.hpp"
+#include "fvx/report/session.hpp"
 #include "table.hpp"
 
 namespace fvx::cli {
+
+namespace {
+constexpr int kFirstView = 1;  ///< --from: views are reported from the first, 1-based
+}  // namespace
 
 const CommandSpec kReplaySpec = {
     "replay",
@@ -36,14 +36,15 @@ const CommandSpec kReplaySpec = {
                   "/inputs/scans"},
                  {"trajectory", 't', "FILE", "pose priors for --scans or --tum: TUM (stamp tx ty tz qx qy qz qw, "
                                              "or without stamp) or Redwood .log", "/inputs/trajectory"},
-                 {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, seconds "
-                                           "(default 0.02)", "/config/max_time_diff_s"},
-                 {"from", 0, "N", "first view reported, 1-based (default 1; earlier views are still replayed)",
-                  "/config/first_view"},
-                 {"to", 0, "N", "last view replayed, 1-based (default: all)", "/config/last_view"},
+                 max_time_diff_option(),
+                 {"from", 0, "N", "first view reported, 1-based", "/config/first_view",
+                  dflt(kFirstView) + "; earlier views are still replayed", in(1, 1e6)},
+                 {"to", 0, "N", "last view replayed, 1-based (default: all)", "/config/last_view", "", in(1, 1e6)},
                  {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json", "-"},
-                 {"search-every", 0, "N", "search the next best view after every N-th view only (default 1; 0: "
-                                          "never, the table then holds integration alone)", "/config/search_every"},
+                 {"search-every", 0, "N", "search the next best view after every N-th view only",
+                  "/config/search_every",
+                  dflt(session::ReplayConfig{}.search_every) + "; 0: never, the table then holds integration alone",
+                  in(0, 1e6)},
              },
              arm_options(),
              {
@@ -55,15 +56,15 @@ const CommandSpec kReplaySpec = {
                                           "a session: as recorded)", "/config/pipeline/register_scans"},
                  {"no-register", 0, nullptr, "integrate scans at their logged poses",
                   "/config/pipeline/register_scans"},
-                 {"resolution", 'r', "M", "map cell edge, metres (default 0.025, or the session's)",
-                  "/config/pipeline/resolution_m"},
+                 resolution_option("/config/pipeline/resolution_m", "map cell edge, metres", ", or the session's"),
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the session's, else the "
                                                     "known cells' box)", "/config/pipeline/bounds_m"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
                                                          "session's, else the known cells' box)",
                   "/config/pipeline/nbv/view_bounds_m"},
-                 {"seed", 0, "N", "seed of the planner (default 1, or the session's)", "/config/pipeline/nbv/seed"},
-                 {"threads", 0, "N", "threads for the search (default 0: all cores)", "/config/pipeline/nbv/threads"},
+                 {"seed", 0, "N", "seed of the planner", "/config/pipeline/nbv/seed",
+                  dflt(nbv::Config{}.seed) + ", or the session's", in(0, 9.2e18)},
+                 threads_option("/config/pipeline/nbv/threads", "threads for the search"),
              },
              search_model_options("/config/pipeline", "/config/pipeline/nbv"),
              session_report_options()})};
@@ -87,48 +88,20 @@ struct Inputs {
 /// A session: the loop's settings as recorded (flags go on top later), the arm from its
 /// manifest unless --capmap/--no-capmap, each scan at its recorded prior.
 Inputs session_inputs(const Args& args, bool arm_flags, session::ReplayConfig& config, ArmInputs& arm_inputs) {
-  pipeline::Config& pc = config.pipeline;
-  nbv::Config& nc = pc.nbv;
   Inputs in;
-  const std::filesystem::path session = args.positional[0];
-  const session::Manifest m = session::read_manifest(session.string());
-  if (m.views.empty()) throw Error("fvx replay: " + session.string() + ": the session holds no view");
-  in.source = session.string();
-  nc.sensor = io::read_depth_camera((session / m.sensor).string());
+  in.source = args.positional[0];
+  session::SessionRecording recording = session::read_session(in.source, config);
+  in.scans = std::move(recording.scans);
   if (args.has("sensor") || args.has("intrinsics") || args.has("depth-min") || args.has("depth-max"))
-    nc.sensor = parse_depth_camera(args, "replay");
-  pc.resolution_m = m.resolution_m;
-  pc.bounds_m = m.search_space_m;
-  nc.view_bounds_m = m.view_bounds_m;
-  nc.strategy = nbv::parse_strategy(m.strategy, session.string() + "/manifest.json: strategy");
-  nc.seed = m.seed;
-  pc.register_scans = m.registration;
-  nc.count_near_void_cells = m.near_voids;
-  pc.target_size_m = m.target_size_m;
-  nc.accumulation = utility::parse_accumulation(m.accumulation, session.string() + "/manifest.json: accumulation");
-  nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
+    config.pipeline.nbv.sensor = parse_depth_camera(args, "replay");
   if (arm_flags) {
     load_arm_inputs(args, "fvx replay", arm_inputs);
     if (args.has("capmap")) in.capmap_path = args.get("capmap");
     if (args.has("arm")) in.arm_path = args.get("arm");
-  } else if (!m.capmap.empty()) {
-    in.capmap_path = session::resolve_path(m.capmap, session.string());
-    in.arm_path = session::resolve_path(m.arm, session.string());
-    load_arm_files(in.capmap_path, in.arm_path, m.T_world_base.value_or(Eigen::Isometry3d::Identity()), "fvx replay",
-                   arm_inputs);
-  }
-  for (const session::ManifestView& v : m.views) {
-    session::RecordedScan r;
-    r.name = (session / v.scan).string();
-    r.T_world_sensor_true = v.T_world_sensor_true;
-    const Eigen::Isometry3d prior = v.T_world_sensor_prior;
-    r.load = [path = r.name, prior]() {
-      scan::LoadConfig load;
-      scan::ScanSource source{path, prior, scan::PoseSource::Trajectory};
-      std::vector<std::string> warnings;
-      return scan::load_scan(source, load, warnings);
-    };
-    in.scans.push_back(std::move(r));
+  } else if (!recording.capmap_path.empty()) {
+    in.capmap_path = recording.capmap_path;
+    in.arm_path = recording.arm_path;
+    nbv::load_arm(in.capmap_path, in.arm_path, recording.T_world_base, "fvx replay", arm_inputs);
   }
   return in;
 }
@@ -157,18 +130,10 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
     in.source = args.get("scans");
   }
   load.intrinsics = nc.sensor.intrinsics;
-  load.max_time_diff_s = in.max_time_diff_s = args.number("max-time-diff", in.max_time_diff_s, 0.0, 1e6);
-  const scan::ScanPlan plan = scan::plan_scans(paths, load);
-  for (const auto& warning : plan.warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
-  for (const scan::ScanSource& source : plan.scans) {
-    session::RecordedScan r;
-    r.name = source.path;
-    r.load = [source, load]() {
-      std::vector<std::string> warnings;
-      return scan::load_scan(source, load, warnings);
-    };
-    in.scans.push_back(std::move(r));
-  }
+  load.max_time_diff_s = in.max_time_diff_s = args.number("max-time-diff", in.max_time_diff_s);
+  std::vector<std::string> warnings;
+  in.scans = session::recorded_scans(paths, load, warnings);
+  for (const auto& warning : warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
   pc.register_scans = !args.has("no-register");
   nc.strategy = nbv::Strategy::FrontierVoid;
   if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
@@ -219,37 +184,18 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   pc.target_size_m = parse_target_size(args, pc.target_size_m);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
-  if (args.has("seed")) nc.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
-  nc.threads = unsigned(args.integer("threads", 0, 0, 1024));
+  args.read("seed", nc.seed);
+  args.read("threads", nc.threads);
   parse_accumulation(args, nc);  // over the recording's
-  pc.clusters.seed = nc.seed;
-  pc.filter.depth_min_m = nc.sensor.depth_min_m;
-  pc.filter.depth_max_m = nc.sensor.depth_max_m;
+  pc.tie_to_search();
   if (nc.strategy == nbv::Strategy::Exhaustive && !arm_inputs.reach)
     throw UsageError("fvx replay: --strategy exhaustive enumerates a capability map: give --capmap");
   if (args.has("to")) config.last_view = to - 1;
-  config.search_every = int(args.integer("search-every", 1, 0, 1000000));
+  args.read("search-every", config.search_every);
   if (from > int(inputs.scans.size()))
     throw UsageError("fvx replay: --from " + std::to_string(from) + ": the recording has " +
                      std::to_string(inputs.scans.size()) + " views");
   throw_if_problems("fvx replay", config.validate());
-}
-
-/// The view's report: its analysis, next best views, pose and table row.
-void write_view_report(const std::string& dir, const session::ReplayView& v, const session::ViewRow& row, double R,
-                       const std::vector<std::string>& joint_names, nbv::Strategy strategy, const std::string& source,
-                       bool timing) {
-  const Json report = view_report("replay", {{"source", source}, {"view", v.view + 1}, {"scan", v.name}}, v.step,
-                                  v.chosen, row, R, joint_names, strategy, timing);
-  write_report(report, dir + "/reports/" + session::view_file_name(v.view, ".json"));
-}
-
-/// Known and void volume after each view, as a line plot.
-void write_volume_plot(const std::string& path, const std::vector<session::ViewRow>& shown) {
-  std::vector<double> known, voids;
-  for (const session::ViewRow& r : shown) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
-  io::write_line_plot_png(path, "fvx replay: known and void volume in the search space after each view", "view",
-                          "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
 }
 
 }  // namespace
@@ -257,8 +203,8 @@ void write_volume_plot(const std::string& path, const std::vector<session::ViewR
 int run_replay(const Args& args) {
   const bool arm_flags = check_input_options(args);
   const Format format = parse_format(args);
-  const int from = int(args.integer("from", 1, 1, 1000000));
-  const int to = int(args.integer("to", 0, 1, 1000000));
+  const int from = int(args.integer("from", kFirstView));
+  const int to = int(args.integer("to", 0));
   if (args.has("to") && to < from) throw UsageError("fvx replay: --to " + std::to_string(to) + " is before --from");
   const std::filesystem::path dir = args.get("output");
 
@@ -270,10 +216,9 @@ int run_replay(const Args& args) {
                                                     : recorded_inputs(args, arm_flags, config, arm_inputs);
   const std::vector<session::RecordedScan>& scans = inputs.scans;
   apply_flags(args, inputs, arm_inputs, from, to, config);
-  for (const char* sub : {"maps", "reports"}) std::filesystem::create_directories(dir / sub);
+  const session::Recorder recorder(dir.string());  // maps/ and reports/
   const double R = pc.resolution_m;
-  const std::vector<std::string> joint_names =
-      arm_inputs.arm ? arm_inputs.arm->joint_names() : std::vector<std::string>{};
+  const std::vector<std::string> joint_names = arm_inputs.joint_names();
   const std::size_t total = config.last_view < 0 ? scans.size() : std::min<std::size_t>(scans.size(), to);
   Progress progress(args.has("progress"));
   std::vector<session::ViewRow> rows;  // every replayed view; the reported ones are view + 1 >= from
@@ -281,13 +226,16 @@ int run_replay(const Args& args) {
   try {
     // Each view's map is written while its search runs (the next scan changes the map).
     const auto save_map = [&](int view, const pipeline::State& state) {
-      if (view + 1 >= from) state.map.save((dir / "maps" / session::view_file_name(view, ".ot")).string());
+      if (view + 1 >= from) recorder.save_map(view, state.map);
     };
     session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
       session::append_row(rows, session::row_of(v, R), v.revealed_void_cells, v.from_choice_m, v.from_choice_deg);
       const session::ViewRow& row = rows.back();
       if (v.view + 1 >= from)
-        write_view_report(dir.string(), v, row, R, joint_names, nc.strategy, inputs.source, args.has("timing"));
+        recorder.save_report(v.view, report_text(view_report("replay", {{"source", inputs.source}, {"view", v.view + 1},
+                                                                        {"scan", v.name}},
+                                                             v.step, v.chosen, row, R, joint_names, nc.strategy,
+                                                             args.has("timing"))));
       progress.update("fvx replay: view " + std::to_string(v.view + 1) + "/" + std::to_string(total) + ": " +
                       std::to_string(row.map_void_cells) + " void cells, best view sees " +
                       std::to_string(row.void_cells));
@@ -301,7 +249,9 @@ int run_replay(const Args& args) {
   std::vector<session::ViewRow> shown;
   for (const session::ViewRow& r : rows)
     if (r.view + 1 >= from) shown.push_back(r);
-  if (!shown.empty()) write_volume_plot((dir / "volumes.png").string(), shown);
+  if (!shown.empty())
+    write_volume_plot((dir / "volumes.png").string(),
+                      "fvx replay: known and void volume in the search space after each view", shown);
   if (format == Format::json) {
     Json report = new_report("replay");
     report["config"] = session::config_json(config);
@@ -309,7 +259,7 @@ int run_replay(const Args& args) {
     report["config"]["max_time_diff_s"] = inputs.max_time_diff_s;
     report["inputs"] = {{"source", inputs.source}, {"views", scans.size()}};
     report["inputs"].update(inputs.files);
-    report["inputs"]["capmap"] = capmap_json(inputs.capmap_path, inputs.arm_path, arm_inputs);
+    report["inputs"]["capmap"] = arm_json(inputs.capmap_path, inputs.arm_path, arm_inputs);
     report["results"] = {{"output", dir.string()},
                          {"views", rows.size()},
                          {"rows", rows_json(shown, args.has("timing"))},

@@ -1,7 +1,5 @@
 // fvx voids — a map → void clusters (ellipsoids), frontier clusters and frontier-voids with
 // their utility (paper §IV-B).
-#include <numeric>
-
 #include "analysis_output.hpp"
 #include "command_table.hpp"
 #include "common_options.hpp"
@@ -18,9 +16,8 @@ const CommandSpec kVoidsSpec = {
         {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
         {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
          "/config/bounds_m"},
-        {"min-fit-score", 0, "S", "region growing keeps a cluster's fit score (Eq. 2) at or above S "
-                                  "(default 0.7)", "/config/min_fit_score"},
-        {"seed", 0, "N", "order of the region-growing seeds (default 1)", "/config/seed"},
+        min_fit_score_option("/config/min_fit_score", "region growing keeps a cluster's fit score (Eq. 2) at or above S"),
+        seed_option("/config/seed", "order of the region-growing seeds", voids::ClusterConfig{}.seed),
         {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd", "-"},
         {"by-cluster", 0, nullptr, "colour the cloud by cluster instead", "-"},
         {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh", "-"},
@@ -34,8 +31,8 @@ int run_voids(const Args& args) {
     throw UsageError("fvx voids: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
   const auto bounds = parse_bounds(args);
   voids::ClusterConfig config;
-  config.min_fit_score = args.number("min-fit-score", config.min_fit_score, 0.0, 1.0, true);
-  config.seed = std::uint64_t(args.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+  args.read("min-fit-score", config.min_fit_score);
+  args.read("seed", config.seed);
   Stopwatch clock;
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
   const double load_s = clock.lap();
@@ -53,19 +50,7 @@ int run_voids(const Args& args) {
                       {"definition", "voids: unknown cells inside the convex hull of the occupied cell "
                                      "centres; frontier-voids: frontier clusters face- or edge-adjacent"}};
   report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", R}};
-  const std::size_t paired_cells = std::accumulate(
-      a.frontier_voids.begin(), a.frontier_voids.end(), std::size_t(0), [&](std::size_t n, const auto& fv) {
-        return n + (fv.enclosed() ? 0 : a.void_clusters[std::size_t(fv.void_id)].cells.size());
-      });
-  report["results"] = {{"bounds_m", bounds_json(a.bounds_m)},
-                       {"hull_faces", a.hull_faces},
-                       {"void_cells", a.void_cells.size()},
-                       {"void_volume_dm3", frontier_voids::to_dm3(double(a.void_cells.size()) * R * R * R)},
-                       {"void_clusters", void_clusters_json(a.void_clusters)},
-                       {"frontier_cells", a.frontier_cells.size()},
-                       {"frontier_clusters", frontier_clusters_json(a.frontier_clusters)},
-                       {"frontier_voids", frontier_voids_json(a.frontier_voids, a.void_clusters)},
-                       {"observable_void_cells", paired_cells}};
+  report["results"] = voids_results_json(a, R);
   if (a.void_cells.empty() && a.warnings.empty()) a.warnings.push_back("no void cell in the search space");
   if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;

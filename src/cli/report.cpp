@@ -6,25 +6,8 @@
 #include <iostream>
 
 #include "fvx/core/atomic_file.hpp"
-#include "fvx/core/pose.hpp"
 
 namespace fvx::cli {
-
-constexpr int kSchemaVersion = 1;
-
-Json new_report(const std::string& command) {
-  Json report;
-  report["schema_version"] = kSchemaVersion;
-  report["fvx_version"] = version();
-  report["command"] = command;
-  report["config"] = Json::object();
-  report["inputs"] = Json::object();
-  report["results"] = Json::object();
-  report["warnings"] = Json::array();
-  return report;
-}
-
-std::string report_text(const Json& report) { return report.dump(2) + "\n"; }
 
 void write_report(const Json& report, const std::string& path) {
   const std::string text = report_text(report);

@@ -1,21 +1,18 @@
 #pragma once
-// The JSON report every command writes: stdout carries only this (ARCHITECTURE.md §2).
+// Writing the JSON report (stdout carries only it, design §2) and the progress line.
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "fvx/core/json.hpp"
 #include <string>
+
+#include "fvx/core/json.hpp"
+#include "fvx/report/envelope.hpp"
 
 namespace fvx::cli {
 
 using fvx::Json;
-
-/// {"schema_version", "fvx_version", "command", "config": {}, "inputs": {}, "results": {},
-///  "warnings": []} — the fields every report has, in that order.
-Json new_report(const std::string& command);
-
-/// The report as written: two-space indented, newline-terminated.
-std::string report_text(const Json& report);
+/// The library's report forms (include/fvx/report/): the commands only call them.
+using namespace fvx::report;
 
 /// Writes report_text(report) to stdout when `path` is empty, otherwise atomically to `path`.
 void write_report(const Json& report, const std::string& path);

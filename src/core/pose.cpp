@@ -58,4 +58,19 @@ double rotation_angle_deg(const Eigen::Isometry3d& T) {
 
 const char* version() { return FVX_VERSION_STRING; }
 
+Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what) {
+  const std::vector<double> v = parse_double_list(text, what + " (ex,ey,ez,tx,ty,tz)", 6);
+  const Eigen::Vector3d eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
+  const Eigen::Vector3d z = target - eye;
+  if (z.norm() < 1e-9) throw UsageError(what + ": the eye and the target coincide");
+  const Eigen::Vector3d forward = z.normalized();
+  // Optical frame: x right, y down. Looking straight up or down, take world x as "up".
+  const Eigen::Vector3d up = std::abs(forward.z()) > 0.999 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d x = forward.cross(up).normalized();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() << x, forward.cross(x), forward;
+  T.translation() = eye;
+  return T;
+}
+
 }  // namespace fvx

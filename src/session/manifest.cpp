@@ -5,6 +5,7 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"  // version()
 #include "fvx/session/session.hpp"
 
 namespace fvx::session {
@@ -187,6 +188,34 @@ std::string resolve_path(const std::string& path, const std::string& session_dir
   if (path.empty() || std::filesystem::exists(path)) return path;
   const std::filesystem::path beside = std::filesystem::path(session_dir) / path;
   return std::filesystem::exists(beside) ? beside.string() : path;
+}
+
+Manifest explore_manifest(const ExploreConfig& config, const std::string& scene, const std::optional<nbv::Reach>& reach,
+                          const std::string& capmap_path, const std::string& arm_path) {
+  const pipeline::Config& pc = config.pipeline;
+  const nbv::Config& nc = pc.nbv;
+  Manifest m;
+  m.created_by = std::string("fvx explore ") + version();
+  m.scene = scene;
+  m.resolution_m = pc.resolution_m;
+  m.search_space_m = pc.bounds_m;
+  m.view_bounds_m = nc.view_bounds_m;
+  if (reach) {
+    m.T_world_base = reach->T_world_base;
+    m.capmap = capmap_path;
+    m.capmap_urdf_hash = reach->capmap->header().urdf_hash;
+  }
+  m.arm = arm_path;
+  m.strategy = nbv::to_string(nc.strategy);
+  m.seed = config.seed;
+  m.pose_noise_m = config.pose_noise_m;
+  m.pose_noise_deg = config.pose_noise_deg;
+  m.registration = pc.register_scans;
+  m.near_voids = nc.count_near_void_cells;
+  m.target_size_m = pc.target_size_m;
+  m.accumulation = utility::to_string(nc.accumulation);
+  m.max_utility_vectors = nc.max_utility_vectors;
+  return m;
 }
 
 }  // namespace fvx::session

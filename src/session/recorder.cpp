@@ -24,6 +24,19 @@ Recorder::Recorder(std::string dir, Manifest manifest, const io::DepthCamera& se
   write_manifest(dir_, manifest_);
 }
 
+Recorder::Recorder(std::string dir) : dir_(std::move(dir)) {
+  for (const char* sub : {"maps", "reports"}) std::filesystem::create_directories(std::filesystem::path(dir_) / sub);
+}
+
+void Recorder::save_map(int view, const map::OccupancyMap& map) const {
+  map.save((std::filesystem::path(dir_) / "maps" / view_file_name(view, ".ot")).string());
+}
+
+void Recorder::save_report(int view, const std::string& report_text) const {
+  write_file_atomically((std::filesystem::path(dir_) / "reports" / view_file_name(view, ".json")).string(),
+                        [&](std::ostream& out) { out << report_text; });
+}
+
 ManifestView Recorder::files_of(const ViewRecord& v) const {
   ManifestView mv;
   mv.view = v.view;
@@ -45,8 +58,8 @@ void Recorder::add(const ViewRecord& v, const map::OccupancyMap& map, const std:
   for (const auto& p : v.points_sensor) organised.push_back(p.cast<float>());
   io::write_pcd((root / mv.scan).string(), organised, v.T_world_sensor_prior, sensor_.intrinsics.width,
                 sensor_.intrinsics.height);
-  map.save((root / mv.map).string());
-  write_file_atomically((root / mv.report).string(), [&](std::ostream& out) { out << report_text; });
+  save_map(v.view, map);  // mv.map
+  save_report(v.view, report_text);  // mv.report
   manifest_.views.push_back(mv);
   write_manifest(dir_, manifest_);
 }

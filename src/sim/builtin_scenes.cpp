@@ -202,4 +202,15 @@ Scene builtin_scene(const std::string& name) {
   return s;
 }
 
+Scene scene_from(const std::string& source, const std::string& info_path) {
+  const std::string prefix = "builtin:";
+  if (source.rfind(prefix, 0) != 0) return load_scene(source, info_path);
+  Scene s = builtin_scene(source.substr(prefix.size()));
+  if (!info_path.empty()) {
+    s.info = read_scene_info(info_path);
+    s.info_path = info_path;
+  }
+  return s;
+}
+
 }  // namespace fvx::sim

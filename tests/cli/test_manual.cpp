@@ -35,6 +35,39 @@ TEST(Manual, EveryOptionIsInHelpAndManPage) {
   }
 }
 
+/// The paragraph of `flag` in a man page: from the .TP item whose tag names it to the next
+/// item or section; empty when there is none.
+std::string option_paragraph(const std::string& page, const std::string& flag) {
+  for (std::size_t at = page.find(".TP\n"); at != std::string::npos; at = page.find(".TP\n", at + 1)) {
+    const std::size_t tag_end = page.find('\n', at + 4);
+    const std::string tag = page.substr(at + 4, tag_end - at - 4);
+    const std::size_t name = tag.find(flag);
+    if (name == std::string::npos || std::isalnum(static_cast<unsigned char>(tag[name + flag.size()])) ||
+        tag[name + flag.size()] == '-')
+      continue;
+    std::size_t end = std::min(page.find("\n.TP\n", tag_end), page.find("\n.SH", tag_end));
+    return page.substr(tag_end, end == std::string::npos ? std::string::npos : end - tag_end);
+  }
+  return "";
+}
+
+TEST(Manual, EveryDeclaredDefaultIsTheManPagesDefault) {
+  for (const cli::Command& command : cli::commands()) {
+    const std::string page = man_page_text(std::string("fvx-") + command.spec.name + ".1");
+    for (const cli::OptionSpec& option : command.spec.options) {
+      if (option.default_text.empty()) continue;
+      const std::string value = option.default_text.substr(0, option.default_text.find_first_of(":;, "));
+      const std::string flag = std::string("--") + option.name;
+      std::string paragraph = option_paragraph(page, flag);  // "Default 10." or "(default 10)"
+      std::transform(paragraph.begin(), paragraph.end(), paragraph.begin(), [](char c) { return std::tolower(c); });
+      EXPECT_NE(paragraph.find("default " + value), std::string::npos)
+          << "fvx-" << command.spec.name << ".1: " << flag << " should say 'default " << value << "':" << paragraph;
+      const std::string help = cli::help_text(command.spec);
+      EXPECT_NE(help.find("(default " + option.default_text + ")"), std::string::npos) << flag;
+    }
+  }
+}
+
 TEST(Manual, EveryCommandHasHelp) {
   for (const cli::Command& command : cli::commands()) {
     bool has_help = false;

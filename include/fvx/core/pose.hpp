@@ -24,6 +24,10 @@ Eigen::Isometry3d pose_from_xyz_rpy(double x, double y, double z, double roll, d
 /// Parses "x,y,z,roll,pitch,yaw" (metres, degrees) as given to `--base` and `--mount`.
 Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& what);
 
+/// Parses "ex,ey,ez,tx,ty,tz": a sensor at eye E looking at target T, world z up (optical
+/// frame: x right, y down). UsageError naming `what`.
+Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);
+
 /// Roll, pitch, yaw (radians) of a rotation: the inverse of pose_from_xyz_rpy's rotation.
 Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R);
 

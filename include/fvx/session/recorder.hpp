@@ -1,9 +1,10 @@
 #pragma once
 /// \file
-/// The session directory of an exploration (man/fvx-session.5), written as the loop goes:
-/// per view the scan, the map after it and its report, then the manifest that lists them, so
-/// that a manifest never names a file that is not complete and a run cut short leaves a
-/// session that fvx replay reads up to its last view.
+/// The output folder of a session, written as the loop goes. An exploration's is a session
+/// directory (man/fvx-session.5): per view the scan, the map after it and its report, then
+/// the manifest that lists them, so that a manifest never names a file that is not complete
+/// and a run cut short leaves a session that fvx replay reads up to its last view. A
+/// replay's holds the per-view maps and reports (no scans: they are the recording's).
 #include <string>
 
 #include "fvx/io/intrinsics.hpp"
@@ -20,12 +21,18 @@ class Recorder {
   /// Creates dir/scans, dir/maps and dir/reports, writes the sensor file (manifest.sensor)
   /// and the manifest without views. `manifest.views` must be empty.
   Recorder(std::string dir, Manifest manifest, const io::DepthCamera& sensor);
+  /// A replay's output: creates dir/maps and dir/reports; no manifest.
+  explicit Recorder(std::string dir);
 
   /// The files of view `view`, relative to the session folder, with its poses and joints.
   ManifestView files_of(const ViewRecord& v) const;
   /// Writes v's scan (an organised PCD in the sensor frame, VIEWPOINT = the prior), `map`
   /// and `report_text` (its report, as it is), then the manifest listing the view.
   void add(const ViewRecord& v, const map::OccupancyMap& map, const std::string& report_text);
+  /// A replay's view: its map as maps/viewNNN.ot, and its report as reports/viewNNN.json.
+  void save_map(int view, const map::OccupancyMap& map) const;
+  void save_report(int view, const std::string& report_text) const;
+  const std::string& dir() const { return dir_; }
 
   const Manifest& manifest() const { return manifest_; }
 

@@ -88,6 +88,12 @@ struct ExploreConfig {
 /// The loop's settings and the step's (pipeline::config_json), as a report echoes them.
 Json config_json(const ExploreConfig& c);
 
+/// What a session's manifest records of an explore run of `config` on the scene file `scene`,
+/// without its views (the Recorder adds them): with `reach`, the arm's files as given
+/// (`capmap_path`, `arm_path`, may be empty), its base and the map's URDF hash.
+Manifest explore_manifest(const ExploreConfig& config, const std::string& scene, const std::optional<nbv::Reach>& reach,
+                          const std::string& capmap_path, const std::string& arm_path);
+
 /// The scan a sensor records at its true pose: sensor-frame points, NaN where a pixel has
 /// no measurement.
 using Sensor = std::function<std::vector<Eigen::Vector3d>(const Eigen::Isometry3d& T_world_sensor_true, int view)>;

@@ -22,6 +22,10 @@ std::vector<std::string> builtin_scene_names();
 /// The named scene (mesh and sidecar); throws UsageError for an unknown name.
 Scene builtin_scene(const std::string& name);
 
+/// A scene argument: "builtin:NAME" (with the sidecar `info_path` instead of its own when
+/// not empty) or a mesh file (load_scene).
+Scene scene_from(const std::string& source, const std::string& info_path);
+
 /// How a face of a box is built.
 struct Face {
   enum Kind { Solid, Open, Hole } kind = Solid;

@@ -1,14 +1,16 @@
-#include "options.hpp"
+#include "fvx/core/options.hpp"
 
 #include <getopt.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 
-namespace fvx::cli {
+namespace fvx {
 
 const std::string& Args::get(const std::string& name) const {
   const auto it = values_.find(name);
@@ -16,16 +18,32 @@ const std::string& Args::get(const std::string& name) const {
   return it->second;
 }
 
-double Args::number(const std::string& name, double fallback, double min, double max,
-                    bool min_exclusive) const {
-  if (!has(name)) return fallback;
-  return parse_double_in(get(name), "--" + name, min, max, min_exclusive);
+const Range& Args::range_of(const std::string& name) const {
+  FVX_ASSERT(spec_ != nullptr, "Args without a CommandSpec");
+  for (const OptionSpec& o : spec_->options)
+    if (name == o.name) {
+      FVX_ASSERT(o.range.has_value(), "option --" + name + " declares no range");
+      return *o.range;
+    }
+  FVX_ASSERT(false, "option --" + name + " is not in the table of fvx " + spec_->name);
+  std::abort();
 }
 
-long long Args::integer(const std::string& name, long long fallback, long long min,
-                        long long max) const {
+double Args::number(const std::string& name, double fallback) const {
+  const Range& r = range_of(name);
   if (!has(name)) return fallback;
-  return parse_int_in(get(name), "--" + name, min, max);
+  return parse_double_in(get(name), "--" + name, r.min, r.max, r.min_exclusive);
+}
+
+long long Args::integer(const std::string& name, long long fallback) const {
+  const Range& r = range_of(name);
+  if (!has(name)) return fallback;
+  const auto limit = [](double v) {  // ±infinity and beyond: the integer type's own limits
+    constexpr auto lo = std::numeric_limits<long long>::min(), hi = std::numeric_limits<long long>::max();
+    return v <= double(lo) ? lo : v >= double(hi) ? hi : (long long)v;
+  };
+  return parse_int_in(get(name), "--" + name, limit(r.min_exclusive ? std::floor(r.min) + 1 : std::ceil(r.min)),
+                      limit(r.max));
 }
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -78,6 +96,7 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv) {
 
   const std::string where = std::string("fvx ") + spec.name;
   Args args;
+  args.spec_ = &spec;
   optind = 0;  // re-initialise getopt for this command (GNU)
   opterr = 0;  // fvx reports errors itself
   int long_index = -1;
@@ -120,10 +139,27 @@ std::string help_text(const CommandSpec& spec) {
     width = std::max(width, l.size());
     left.push_back(l);
   }
-  for (std::size_t i = 0; i < left.size(); ++i)
-    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << spec.options[i].help << "\n";
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    const OptionSpec& o = spec.options[i];
+    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << o.help
+        << (o.default_text.empty() ? "" : " (default " + o.default_text + ")") << "\n";
+  }
   out << "\nSee 'man fvx-" << spec.name << "' for details.\n";
   return out.str();
 }
 
-}  // namespace fvx::cli
+OptionSpec seed_option(const std::string& echo, const char* help, std::uint64_t value) {
+  return {"seed", 0, "N", help, echo, dflt(value), in(0, double(std::numeric_limits<long long>::max()))};
+}
+
+OptionSpec threads_option(const std::string& echo, const char* help, const std::string& note) {
+  return {"threads", 0, "N", help, echo, "0: all cores" + note, in(0, 1024)};
+}
+
+std::vector<OptionSpec> options(std::initializer_list<std::vector<OptionSpec>> tables) {
+  std::vector<OptionSpec> all;
+  for (const auto& table : tables) all.insert(all.end(), table.begin(), table.end());
+  return all;
+}
+
+}  // namespace fvx

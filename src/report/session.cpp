@@ -1,12 +1,16 @@
-#include "session_output.hpp"
+#include "fvx/report/session.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <map>
 
 #include "fvx/core/error.hpp"
-#include "nbv_output.hpp"
+#include "fvx/io/visual.hpp"
+#include "fvx/report/envelope.hpp"
+#include "fvx/report/nbv.hpp"
 
-namespace fvx::cli {
+namespace fvx::report {
 
 namespace {
 
@@ -113,4 +117,32 @@ Json view_report(const std::string& command, Json inputs, const pipeline::StepRe
   return report;
 }
 
-}  // namespace fvx::cli
+Json explore_view_report(const std::string& scene, const session::ViewRecord& v, const session::ManifestView& files,
+                         const session::ViewRow& row, double R, const std::vector<std::string>& joint_names,
+                         nbv::Strategy strategy, bool timing) {
+  Json report = view_report("explore", {{"scene", scene}, {"view", v.view}, {"scan", files.scan}, {"map", files.map}},
+                            v.step, v.chosen, row, R, joint_names, strategy, timing);
+  report["results"]["T_world_sensor_prior"] = pose_json(v.T_world_sensor_prior);
+  report["results"]["T_world_sensor_true"] = pose_json(v.T_world_sensor_true);
+  return report;
+}
+
+Json explore_results_json(const std::string& dir, const session::ExploreResult& result,
+                          const sim::ExplorationScore& score, const std::vector<session::ViewRow>& rows, bool timing) {
+  const auto target = score.observable_target_cells();
+  return {{"session", dir},
+          {"views", result.views},
+          {"end", result.end},
+          {"utility_exhausted", result.utility_exhausted},
+          {"observable_cells", score.observable_cells()},
+          {"observable_target_cells", target ? Json(*target) : Json(nullptr)},
+          {"rows", rows_json(rows, timing)}};
+}
+
+void write_volume_plot(const std::string& path, const std::string& title, const std::vector<session::ViewRow>& rows) {
+  std::vector<double> known, voids;
+  for (const session::ViewRow& r : rows) known.push_back(r.known_dm3), voids.push_back(r.void_dm3);
+  io::write_line_plot_png(path, title, "view", "dm^3", {{"known", {40, 120, 200}, known}, {"void", {150, 60, 170}, voids}});
+}
+
+}  // namespace fvx::report

@@ -1,17 +1,16 @@
-#include "table.hpp"
+#include "fvx/report/table.hpp"
 
 #include <cstdio>
 
 #include "fvx/core/error.hpp"
 
-namespace fvx::cli {
+namespace fvx::report {
 
-Format parse_format(const Args& args) {
-  const std::string f = args.has("format") ? args.get("format") : "markdown";
-  if (f == "markdown") return Format::markdown;
-  if (f == "csv") return Format::csv;
-  if (f == "json") return Format::json;
-  throw UsageError("--format '" + f + "': expected markdown, csv or json");
+Format parse_format(const std::string& name, const std::string& what) {
+  if (name == "markdown") return Format::markdown;
+  if (name == "csv") return Format::csv;
+  if (name == "json") return Format::json;
+  throw UsageError(what + " '" + name + "': expected markdown, csv or json");
 }
 
 std::string fixed(double v, int digits) {
@@ -37,4 +36,4 @@ void print_table(const std::vector<std::string>& header, const std::vector<std::
   for (const auto& r : rows) line(r);
 }
 
-}  // namespace fvx::cli
+}  // namespace fvx::report

@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// The options of the step's configs that several commands share, declared next to the
+/// configs they set: their table rows (with default and range) and their parsing.
+#include <string>
+#include <vector>
+
+#include "fvx/core/options.hpp"
+#include "fvx/pipeline/pipeline.hpp"
+
+namespace fvx::pipeline {
+
+/// The default cell edge of every command, metres: the paper's 2.5 cm.
+inline const double kDefaultResolution_m = Config{}.resolution_m;
+
+/// --resolution M in [0.001, 1] metres, default kDefaultResolution_m then `note`.
+OptionSpec resolution_option(const std::string& echo, const char* help, const std::string& note);
+/// --resolution's value, `fallback` when absent.
+double parse_resolution(const Args& args, double fallback);
+/// --max-time-diff S: stamps matched within S seconds (scan::LoadConfig's default).
+OptionSpec max_time_diff_option();
+/// --min-fit-score S in (0, 1], default voids::ClusterConfig's.
+OptionSpec min_fit_score_option(const std::string& echo, const char* help);
+
+/// --far-voids-only and --near-voids (the default of every command; kept for scripts).
+std::vector<OptionSpec> near_voids_options(const std::string& echo);
+/// nbv::Config::count_near_void_cells from them, `fallback` (a session's) when neither is
+/// given; UsageError when both are.
+bool parse_near_voids(const Args& args, bool fallback);
+
+/// --target-size M: the searched object's smallest extent, metres; only void cells that
+/// could hide it count (voids/width.hpp). 0 (the default): every void cell.
+std::vector<OptionSpec> target_size_options(const std::string& echo);
+/// The value of --target-size if given, else `fallback`.
+double parse_target_size(const Args& args, double fallback);
+
+/// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp).
+std::vector<OptionSpec> accumulation_options(const std::string& echo);
+/// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
+void parse_accumulation(const Args& args, nbv::Config& config);
+
+/// What the search models, for commands that search: --far-voids-only/--near-voids,
+/// --target-size, --accumulation/--utility-vectors and the depth camera; `pipeline_echo` and
+/// `nbv_echo` point at the report's pipeline and search configs.
+std::vector<OptionSpec> search_model_options(const std::string& pipeline_echo, const std::string& nbv_echo);
+
+}  // namespace fvx::pipeline

@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// What `fvx capmap` shows of a capability map: its header, its reachability (the share of
+/// directions reached per voxel), a point query, and the map as a coloured cloud.
+#include <optional>
+#include <string>
+
+#include "fvx/capmap/capability_map.hpp"
+#include "fvx/core/json.hpp"
+
+namespace fvx::report {
+
+Json capmap_header_json(const capmap::CapabilityHeader& h);
+/// Header, voxels, bits set, and a histogram of the reachability index in 10 % bins.
+Json capmap_info_json(const capmap::CapabilityMap& map);
+/// At `point_m`: inside the grid, the reachability index, the directions reached, and with
+/// `direction` (unit) whether it is reached.
+Json capmap_query_json(const capmap::CapabilityMap& map, const Eigen::Vector3d& point_m,
+                       const std::optional<Eigen::Vector3d>& direction);
+/// Each voxel's centre coloured by its reachability index, blue (low) to red (high), .ply or
+/// .pcd; returns the number of points.
+std::size_t write_capmap_cloud(const std::string& path, const capmap::CapabilityMap& map);
+
+}  // namespace fvx::report

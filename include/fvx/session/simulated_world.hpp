@@ -1,0 +1,45 @@
+#pragma once
+/// \file
+/// The world of `fvx explore`: a scene mesh, a virtual Kinect in it, and the ground truth
+/// each view is judged against (how much of the observable empty space is known, whether
+/// the target was seen, void cells that are really solid).
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fvx/session/rows.hpp"
+#include "fvx/session/session.hpp"
+#include "fvx/sim/depth_sensor.hpp"
+#include "fvx/sim/exploration_score.hpp"
+#include "fvx/sim/ray_caster.hpp"
+
+namespace fvx::session {
+
+class SimulatedWorld {
+ public:
+  /// Ground truth at `resolution_m` around the search space `S` and over every place the
+  /// sensor can be (`T_world_sensor_start` and, with `reach`, the capability map's voxels):
+  /// rays of the observability check start there. With `reach`, "observable" is what some
+  /// pose of the capability map would reveal, by the Kinect's rule with `camera`'s depths.
+  /// `scene` must outlive the world. Error when the start pose is inside an obstacle or the
+  /// arm cannot take it (start_configuration with `seed`). `progress` names each long stage.
+  SimulatedWorld(const sim::Scene& scene, double resolution_m, const Eigen::AlignedBox3d& S,
+                 const Eigen::Isometry3d& T_world_sensor_start, const std::optional<nbv::Reach>& reach,
+                 const io::DepthCamera& camera, std::uint64_t seed, unsigned threads,
+                 const std::function<void(const std::string&)>& progress);
+
+  /// The virtual Kinect: a frame rendered at the true pose with `render` (seeded by the view).
+  Sensor kinect(const sim::SensorConfig& render) const;
+  /// A view's table row with its ground-truth columns (revealed comes with the next view).
+  ViewRow row_of(const ViewRecord& v, const map::OccupancyMap& map) const;
+  const sim::ExplorationScore& score() const { return *score_; }
+
+ private:
+  Eigen::AlignedBox3d S_;
+  std::unique_ptr<sim::RayCaster> caster_;
+  std::unique_ptr<sim::GroundTruth> gt_;
+  std::unique_ptr<sim::ExplorationScore> score_;
+};
+
+}  // namespace fvx::session

@@ -1,0 +1,70 @@
+#include "fvx/report/capmap.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "fvx/io/visual.hpp"
+
+namespace fvx::report {
+
+namespace {
+
+std::size_t bits_of(const std::vector<std::uint64_t>& words) {
+  std::size_t n = 0;
+  for (std::uint64_t w : words) n += std::size_t(__builtin_popcountll(w));
+  return n;
+}
+
+}  // namespace
+
+Json capmap_header_json(const capmap::CapabilityHeader& h) {
+  return {{"base_link", h.base_link},   {"tip_link", h.tip_link},   {"mount_xyz_rpy", h.mount_xyz_rpy},
+          {"viewing_axis", vec_json(h.viewing_axis)},  {"urdf_hash", h.urdf_hash},
+          {"voxel_m", h.voxel_m},       {"origin_m", vec_json(h.origin_m)},      {"dims", h.dims},
+          {"directions", h.directions}, {"position_tolerance_m", h.position_tolerance_m},
+          {"angle_tolerance_deg", h.angle_tolerance_rad * 180.0 / M_PI},      {"method", h.method},
+          {"seed", h.seed},             {"shard_index", h.shard_index},     {"shard_count", h.shard_count},
+          {"fvx_version", h.fvx_version}};
+}
+
+Json capmap_info_json(const capmap::CapabilityMap& map) {
+  std::vector<std::size_t> histogram(10, 0);  // reachability index in 10 % bins
+  std::size_t bits = 0;
+  for (const auto& [voxel, words] : map.voxels()) {
+    const std::size_t n = bits_of(words);
+    bits += n;
+    histogram[std::min<std::size_t>(9, n * 10 / std::size_t(map.header().directions))] += 1;
+  }
+  return {{"header", capmap_header_json(map.header())}, {"voxels", map.voxel_count()}, {"bits", bits},
+          {"reachability_index_histogram", {{"bin_width_percent", 10}, {"voxels", histogram}}}};
+}
+
+Json capmap_query_json(const capmap::CapabilityMap& map, const Eigen::Vector3d& p,
+                       const std::optional<Eigen::Vector3d>& direction) {
+  Json r = {{"point_m", vec_json(p)}, {"inside_grid", map.voxel_of(p) >= 0},
+            {"reachability_index", map.reachability_index(p)}};
+  if (direction) {
+    r["direction"] = vec_json(*direction);
+    r["reachable"] = map.reachable(p, *direction);
+  }
+  Json dirs = Json::array();
+  for (int i : map.reachable_directions(p)) dirs.push_back(vec_json(map.directions()[std::size_t(i)]));
+  r["reachable_directions"] = dirs;
+  return r;
+}
+
+std::size_t write_capmap_cloud(const std::string& path, const capmap::CapabilityMap& map) {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<io::Rgb> colors;
+  for (const auto& [voxel, words] : map.voxels()) {
+    const double ri = double(bits_of(words)) / map.header().directions;  // 0 … 1: blue (low) to red (high)
+    points.push_back(map.center_of(voxel).cast<float>());
+    colors.push_back({std::uint8_t(255 * std::min(1.0, 2 * ri)), 60, std::uint8_t(255 * std::max(0.0, 1 - 2 * ri))});
+  }
+  io::write_colored_cloud(path, points, colors);
+  return points.size();
+}
+
+}  // namespace fvx::report

@@ -1,0 +1,85 @@
+#include "fvx/session/simulated_world.hpp"
+
+#include <cstdio>
+
+#include "fvx/core/error.hpp"
+#include "fvx/session/start.hpp"
+#include "fvx/viewpoints/fov.hpp"
+
+namespace fvx::session {
+
+namespace {
+
+/// Every place the sensor can be: the start and, with an arm, its capability map's voxels.
+std::vector<Eigen::Vector3d> sensor_positions(const Eigen::Vector3d& start, const std::optional<nbv::Reach>& reach) {
+  std::vector<Eigen::Vector3d> positions = {start};
+  if (reach)
+    for (const auto& entry : reach->capmap->voxels())
+      positions.push_back(reach->T_world_base * reach->capmap->center_of(entry.first));
+  return positions;
+}
+
+/// Observable = what some pose of the arm's capability map would reveal (coarse rays: the
+/// union over thousands of poses fills their gaps).
+void restrict_to_arm(const nbv::Reach& reach, const sim::GroundTruth& gt, const io::DepthCamera& camera,
+                     unsigned threads, sim::ExplorationScore& score) {
+  const std::vector<Eigen::Isometry3d> poses = capmap_view_poses(reach, [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3i cell = gt.cell_of(p);
+    return gt.contains(cell) && gt.solid(cell);
+  });
+  score.restrict_to_views(gt, poses, viewpoints::ray_fan(camera.intrinsics, 20, 15), camera.depth_min_m,
+                          camera.depth_max_m, threads);
+}
+
+std::string point_text(const Eigen::Vector3d& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
+  return buf;
+}
+
+}  // namespace
+
+SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, const Eigen::AlignedBox3d& S,
+                               const Eigen::Isometry3d& T_world_sensor_start, const std::optional<nbv::Reach>& reach,
+                               const io::DepthCamera& camera, std::uint64_t seed, unsigned threads,
+                               const std::function<void(const std::string&)>& progress)
+    : S_(S), caster_(sim::make_ray_caster(scene.mesh)) {
+  const Eigen::Vector3d eye = T_world_sensor_start.translation();
+  if (sim::inside_solid(*caster_, eye.cast<float>()))
+    throw Error("fvx explore: the start pose " + point_text(eye) + " is inside an obstacle of the scene");
+  start_configuration(reach, T_world_sensor_start, seed);  // Error when the arm cannot take it
+  progress("ground truth of the search space");
+  gt_ = std::make_unique<sim::GroundTruth>(scene.mesh, *caster_, resolution_m,
+                                           sim::exploration_region(S, sensor_positions(eye, reach)));
+  std::optional<Eigen::AlignedBox3d> target;
+  if (scene.info.target) target = scene.info.target->box;
+  score_ = std::make_unique<sim::ExplorationScore>(*gt_, S, target);
+  if (reach) {
+    progress("the space the arm can observe at all (ground truth)");
+    restrict_to_arm(*reach, *gt_, camera, threads, *score_);
+  }
+}
+
+Sensor SimulatedWorld::kinect(const sim::SensorConfig& render) const {
+  return [caster = caster_.get(), render](const Eigen::Isometry3d& T_world_sensor, int view) {
+    const sim::Frame frame = sim::render(*caster, T_world_sensor, render, std::uint64_t(view));
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(frame.points_sensor.size());
+    for (const auto& p : frame.points_sensor) points.push_back(p.cast<double>());
+    return points;
+  };
+}
+
+ViewRow SimulatedWorld::row_of(const ViewRecord& v, const map::OccupancyMap& map) const {
+  ViewRow row = session::row_of(v, map, S_);
+  TruthColumns truth;
+  truth.known_fraction = score_->known_fraction(map);
+  truth.target_cells = score_->target_cells_seen(map);
+  truth.target_seen = truth.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
+  if (v.chosen) truth.u_in_solid = gt_->solid_among(v.step.nbv.views[*v.chosen].seen_void_cells);
+  truth.free_in_solid = gt_->free_in_solid(map, S_);
+  row.truth = truth;
+  return row;
+}
+
+}  // namespace fvx::session
