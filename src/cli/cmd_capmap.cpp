@@ -1,6 +1,5 @@
 // fvx capmap — an arm's capability map: build, info, query, eval, export, merge.
 #include <atomic>
-#include <chrono>
 #include <csignal>
 #include <cmath>
 
@@ -11,6 +10,7 @@
 #include "fvx/capmap/evaluate.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
+#include "fvx/core/stopwatch.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/report/capmap.hpp"
 #include "report.hpp"
@@ -112,7 +112,7 @@ int build(const Args& args, Json& report) {
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   capmap::BuildStats stats;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const capmap::CapabilityMap map = capmap::build_capability_map(
       arm, c, &stats,
       [&, last_percent = -1](std::size_t done, std::size_t total) mutable {
@@ -137,7 +137,7 @@ int build(const Args& args, Json& report) {
                        {"bits", stats.reached},
                        {"candidates_checked", stats.candidates},
                        {"ik_iterations", stats.ik_iterations},
-                       {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+                       {"seconds", clock.seconds()}};
   return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
@@ -71,6 +72,12 @@ Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what
   T.linear() << x, forward.cross(x), forward;
   T.translation() = eye;
   return T;
+}
+
+std::string point_text(const Eigen::Vector3d& p_m) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.3f)", p_m.x(), p_m.y(), p_m.z());
+  return buf;
 }
 
 }  // namespace fvx

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/stopwatch.hpp"
 #include "fvx/viewpoints/orientations.hpp"
 #include "search.hpp"
 
@@ -55,7 +56,7 @@ namespace detail {
 
 /// Algorithm 1 over the search's grid, with the loop's hidden void cells left out of u_i.
 utility::Field accumulate_field(const Search& s, Result& result) {
-  const auto t0 = Clock::now();
+  Stopwatch t0;
   utility::Config utility_config;
   if (s.config.progress)
     utility_config.progress = [&](std::size_t done, std::size_t total) {
@@ -75,7 +76,7 @@ utility::Field accumulate_field(const Search& s, Result& result) {
   utility::Field field = utility::accumulate(s.grid, visible ? *visible : s.a, utility_config);
   result.utility_vectors = field.vectors;
   result.exact_utility_vectors = field.exact_vectors;
-  result.timing.accumulation_s = seconds_since(t0);
+  result.timing.accumulation_s = t0.seconds();
   return field;
 }
 
@@ -124,20 +125,20 @@ std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, con
 // The paper's method (§IV-C): Algorithm 1, pruning, orientations at the cells sorted by
 // util(c) until N valid poses, c* = argmax U (Eq. 3).
 Result select_frontier_void(Search& s, const utility::Field& field, Result result) {
-  auto t0 = Clock::now();
+  Stopwatch t0;
   Pruning& pruning = result.pruning;
   const std::vector<std::size_t> candidates = s.prune(field.util_m3, result);
-  result.timing.pruning_s = seconds_since(t0);
+  result.timing.pruning_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   std::vector<Pose> poses = sample_poses(s, field, candidates, pruning);
-  result.timing.sampling_s = seconds_since(t0);
+  result.timing.sampling_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
   refine(s, poses, U, result);
   result.views = s.rank(poses, U, &field.util_m3, &field);
-  result.timing.scoring_s = seconds_since(t0);
+  result.timing.scoring_s = t0.seconds();
 
   if (!result.views.empty()) return result;
   if (field.cells == 0)
@@ -157,7 +158,7 @@ Result select_frontier_void(Search& s, const utility::Field& field, Result resul
 }  // namespace detail
 
 struct PreparedSearch::State {
-  detail::Clock::time_point start;
+  Stopwatch start;
   std::optional<Reach> reach;  // the search refers to these two
   Config config;
   Result result;
@@ -171,7 +172,7 @@ PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_void
                                const std::vector<map::VoxelKey>& hidden_void_cells)
     : state_(std::make_unique<State>()) {
   State& st = *state_;
-  st.start = detail::Clock::now();
+  st.start = Stopwatch();
   st.reach = std::move(reach);
   st.config = std::move(config);
   const auto problems = st.config.validate();
@@ -193,10 +194,10 @@ PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_void
     st.result.reason = "no frontier cell in the search space";
     return;
   }
-  const auto t0 = detail::Clock::now();
+  Stopwatch t0;
   if (st.config.progress) st.config.progress("dense grid and distance transform", 0, 0);
   st.search = std::make_unique<detail::Search>(map, analysis, st.reach, st.config, hidden_void_cells);
-  st.result.timing.grid_s = detail::seconds_since(t0);
+  st.result.timing.grid_s = t0.seconds();
 }
 
 PreparedSearch::PreparedSearch(PreparedSearch&&) noexcept = default;
@@ -224,7 +225,7 @@ Result PreparedSearch::viewpoints() {
     case Strategy::Random: result = detail::select_random(*st.search, std::move(result)); break;
   }
   st.field.reset();
-  result.timing.total_s = detail::seconds_since(st.start);
+  result.timing.total_s = st.start.seconds();
   return result;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "fvx/core/stopwatch.hpp"
 #include "fvx/viewpoints/orientations.hpp"
 #include "search.hpp"
 
@@ -44,7 +45,7 @@ bool meets_cone(const Sphere& sphere, const Eigen::Vector3d& apex, const Eigen::
 }  // namespace
 
 Result select_exhaustive(Search& s, Result result) {
-  auto t0 = Clock::now();
+  Stopwatch t0;
   const capmap::CapabilityMap& cm = *s.reach->capmap;
   const Eigen::Isometry3d& T_world_base = s.reach->T_world_base;
   Pruning& pruning = result.pruning;
@@ -90,20 +91,20 @@ Result select_exhaustive(Search& s, Result result) {
       }
     }
   }
-  result.timing.pruning_s = seconds_since(t0);
+  result.timing.pruning_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
   pruning.seeing_nothing += pruning.culled;
-  result.timing.scoring_s = seconds_since(t0);
+  result.timing.scoring_s = t0.seconds();
   // IK only for the poses that make the ranking (it would cost seconds for all of them).
-  t0 = Clock::now();
+  t0 = Stopwatch();
   Pruning ik_pruning;
   result.views = s.rank(poses, U, nullptr, nullptr, [&](Pose& pose, std::size_t i) {
     return !s.reach->arm || s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (i + 1), ik_pruning);
   });
   pruning.ik_failed = ik_pruning.ik_failed;
-  result.timing.sampling_s = seconds_since(t0);
+  result.timing.sampling_s = t0.seconds();
   if (result.views.empty())
     result.reason = pruning.candidate_cells == 0
                         ? "no voxel of the capability map is a free cell of the map clear of obstacles"
@@ -112,7 +113,7 @@ Result select_exhaustive(Search& s, Result result) {
 }
 
 Result select_frontier(Search& s, Result result) {
-  auto t0 = Clock::now();
+  Stopwatch t0;
   if (s.config.progress) s.config.progress("rays in front of the largest frontier cluster", 0, 0);
   const frontiers::Cluster* target = s.frontier_target;
   // A frontier-based viewer stands in the free space in front of the frontier: from each
@@ -135,14 +136,14 @@ Result select_frontier(Search& s, Result result) {
                 });
   }
   result.utility_vectors = vectors;
-  result.timing.accumulation_s = seconds_since(t0);
+  result.timing.accumulation_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   Pruning& pruning = result.pruning;
   const std::vector<std::size_t> candidates = s.prune(rays_through, result);
-  result.timing.pruning_s = seconds_since(t0);
+  result.timing.pruning_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   std::mt19937_64 rng(s.config.seed);
   const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
   std::vector<Pose> poses;
@@ -157,9 +158,9 @@ Result select_frontier(Search& s, Result result) {
     }
   }
   pruning.valid_poses = poses.size();
-  result.timing.sampling_s = seconds_since(t0);
+  result.timing.sampling_s = t0.seconds();
 
-  t0 = Clock::now();
+  t0 = Stopwatch();
   const viewpoints::FovScorer scorer(s.grid, std::move(mask), s.rays_sensor, s.config.sensor.depth_max_m,
                                      s.config.sensor.depth_min_m);
   const std::vector<std::size_t> seen = s.score(scorer, poses, result);
@@ -169,7 +170,7 @@ Result select_frontier(Search& s, Result result) {
     v.accumulated_utility_m3 = 0.0;
   }
   for (View& v : result.views) v.frontier_cells_seen = seen[v.pose_index];
-  result.timing.scoring_s = seconds_since(t0);
+  result.timing.scoring_s = t0.seconds();
   if (result.views.empty())
     result.reason = candidates.empty() ? "pruning removed every cell in front of the largest frontier cluster"
                                        : "no valid pose sees the largest frontier cluster";
@@ -180,7 +181,7 @@ Result select_frontier(Search& s, Result result) {
 // the capability map's voxels), a uniform roll, and a direction uniform over the reachable
 // ones (without an arm: over the sphere). Poses are drawn until one sees a void cell.
 Result select_random(Search& s, Result result) {
-  auto t0 = Clock::now();
+  Stopwatch t0;
   Pruning& pruning = result.pruning;
   std::vector<Eigen::Vector3d> positions;
   if (s.reach) {
@@ -203,13 +204,13 @@ Result select_random(Search& s, Result result) {
     }
   }
   pruning.candidate_cells = positions.size();
-  result.timing.pruning_s = seconds_since(t0);
+  result.timing.pruning_s = t0.seconds();
   if (positions.empty()) {
     result.reason = "pruning removed every position (not free, outside the view bounds, too close to an obstacle "
                     "or out of the arm's reach)";
     return result;
   }
-  t0 = Clock::now();
+  t0 = Stopwatch();
   std::mt19937_64 rng(s.config.seed);
   std::uniform_int_distribution<std::size_t> pick(0, positions.size() - 1);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -237,7 +238,7 @@ Result select_random(Search& s, Result result) {
     U.push_back(seen);
     if (seen > 0) break;
   }
-  result.timing.scoring_s = seconds_since(t0);
+  result.timing.scoring_s = t0.seconds();
   result.views = s.rank(poses, U, nullptr, nullptr);
   if (result.views.empty())
     result.reason = "none of " + std::to_string(poses.size()) + " random reachable poses (" +

@@ -1,7 +1,6 @@
 #pragma once
 // What the three strategies share: the grid, the position and orientation checks, scoring in
 // parallel and the ranking. Private to src/nbv/.
-#include <chrono>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -12,11 +11,6 @@
 #include "fvx/viewpoints/fov.hpp"
 
 namespace fvx::nbv::detail {
-
-using Clock = std::chrono::steady_clock;
-inline double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
 

@@ -1,19 +1,14 @@
 #include "fvx/pipeline/pipeline.hpp"
 
-#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/stopwatch.hpp"
 #include "fvx/voids/width.hpp"
 
 namespace fvx::pipeline {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
 
 int Config::min_void_width_cells() const { return voids::void_width_for_target(target_size_m, resolution_m); }
 
@@ -53,19 +48,19 @@ namespace {
 
 /// Step 2: the scan registered to the points integrated so far (its pose prior otherwise).
 void register_scan(const State& state, scan::Scan& scan, const Config& config, StepResult& r) {
-  const auto t0 = Clock::now();
+  Stopwatch t0;
   if (config.register_scans && !state.registration_target.empty() && r.filtered.kept > 0) {
     r.registration = registration::align(scan.points_sensor, scan.T_world_sensor, state.registration_target.points(),
                                          config.registration);
     if (r.registration->converged) scan.T_world_sensor = r.registration->T_world_sensor;
   }
   r.T_world_sensor = scan.T_world_sensor;
-  r.timing.registration_s = seconds_since(t0);
+  r.timing.registration_s = t0.seconds();
 }
 
 /// Step 3: the scan into the map; returns the change set that drives the incremental updates.
 map::Integration integrate_scan(State& state, const scan::Scan& scan, const Config& config, StepResult& r) {
-  const auto t0 = Clock::now();
+  Stopwatch t0;
   const double range_m = config.max_range_m.value_or(config.nbv.sensor.depth_max_m);
   map::Integration integration =
       state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m);
@@ -76,14 +71,14 @@ map::Integration integrate_scan(State& state, const scan::Scan& scan, const Conf
       state.registration_target = registration::TargetCloud(config.registration.voxel_m / 2);
     state.registration_target.add(scan.T_world_sensor, scan.points_sensor);
   }
-  r.timing.integration_s = seconds_since(t0);
+  r.timing.integration_s = t0.seconds();
   return integration;
 }
 
 /// §IV-A, §IV-B: frontiers and voids from the change set (rebuilt when the last step did not
 /// analyse: the sets are behind the map then), then their pairs, the frontier-voids.
 void update_frontiers_and_voids(State& state, const map::Integration& integration, const Config& config, StepResult& r) {
-  const auto t0 = Clock::now();
+  Stopwatch t0;
   if (config.analyse) {
     if (!state.analysed) {
       state.frontier_set.rebuild(state.map);
@@ -96,7 +91,7 @@ void update_frontiers_and_voids(State& state, const map::Integration& integratio
                                          config.clusters, config.min_void_width_cells());
   }
   state.analysed = config.analyse;
-  r.timing.frontiers_voids_s = seconds_since(t0);
+  r.timing.frontiers_voids_s = t0.seconds();
 }
 
 }  // namespace
@@ -137,12 +132,12 @@ StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reac
   StepResult r = integrate_step(state, std::move(scan), config);
   if (expected_void_cells) mark_hidden(state, *expected_void_cells, r);
   if (config.search) {  // step 7, §IV-C
-    const auto t0 = Clock::now();
+    Stopwatch t0;
     nbv::PreparedSearch search = prepare_search(state, r, reach, config);
     search.utility();            // Algorithm 1: utility vectors accumulated in free cells
     r.nbv = search.viewpoints();  // pruning, orientations, U by ray casting, c* = argmax U (Eq. 3)
     r.searched = true;
-    r.timing.search_s = seconds_since(t0);
+    r.timing.search_s = t0.seconds();
   }
   return r;
 }

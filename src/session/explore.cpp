@@ -2,19 +2,18 @@
 // register, integrate, frontiers and voids, next best view, move there, until no reachable
 // view sees a void.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <random>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"
+#include "fvx/core/stopwatch.hpp"
 #include "fvx/session/session.hpp"
 
 namespace fvx::session {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 // A ranked view this close to a view already taken repeats it.
 constexpr double kSamePosition_m = 0.05;
@@ -63,9 +62,7 @@ std::pair<Eigen::Isometry3d, Eigen::VectorXd> start_configuration(const std::opt
   if (!reach) return {T_world_sensor, Eigen::VectorXd()};
   const Eigen::Vector3d p = T_world_sensor.translation(), d = T_world_sensor.linear().col(2);
   if (!reach->capmap->reachable(reach->T_world_base, p, d)) {
-    char where[96];
-    std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
-    throw Error(std::string("the start pose ") + where +
+    throw Error("the start pose " + point_text(p) +
                 " is out of the arm's reach: its capability map has no bit there for that direction");
   }
   if (!reach->arm) return {T_world_sensor, Eigen::VectorXd()};
@@ -111,12 +108,12 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     record.T_world_sensor_prior = view > 0 && (config.pose_noise_m > 0 || config.pose_noise_deg > 0)
                                       ? perturbed(T_true, config.pose_noise_m, config.pose_noise_deg, noise_rng)
                                       : T_true;
-    const auto t0 = Clock::now();
+    Stopwatch t0;
     record.points_sensor = sensor(T_true, view);
     // The loop integrates what the session records: PCD stores single precision, so that
     // fvx replay of the session reads back exactly these points.
     for (Eigen::Vector3d& p : record.points_sensor) p = p.cast<float>().cast<double>();
-    record.scan_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    record.scan_s = t0.seconds();
 
     scan::Scan scan;
     scan.source = "view " + std::to_string(view);

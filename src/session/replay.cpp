@@ -4,18 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <chrono>
 #include <future>
 #include <memory>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/stopwatch.hpp"
 
 namespace fvx::session {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double axis_angle_rad(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::acos(std::clamp(a.linear().col(2).dot(b.linear().col(2)), -1.0, 1.0));
@@ -80,13 +77,13 @@ InFlight launch(const pipeline::State& state, std::unique_ptr<ReplayView> out, c
   InFlight f;
   f.out = std::move(out);
   if (!step_config.search) return f;
-  const auto t0 = Clock::now();
+  Stopwatch t0;
   auto search = std::make_shared<nbv::PreparedSearch>(pipeline::prepare_search(state, f.out->step, reach, step_config));
-  f.prepare_s = seconds_since(t0);
+  f.prepare_s = t0.seconds();
   f.search = std::async(std::launch::async, [search] {
-    const auto t1 = Clock::now();
+    Stopwatch t1;
     nbv::Result result = search->run();
-    return std::make_pair(std::move(result), seconds_since(t1));
+    return std::make_pair(std::move(result), t1.seconds());
   });
   return f;
 }

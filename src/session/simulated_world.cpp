@@ -1,8 +1,7 @@
 #include "fvx/session/simulated_world.hpp"
 
-#include <cstdio>
-
 #include "fvx/core/error.hpp"
+#include "fvx/core/pose.hpp"
 #include "fvx/session/start.hpp"
 #include "fvx/viewpoints/fov.hpp"
 
@@ -29,12 +28,6 @@ void restrict_to_arm(const nbv::Reach& reach, const sim::GroundTruth& gt, const 
   });
   score.restrict_to_views(gt, poses, viewpoints::ray_fan(camera.intrinsics, 20, 15), camera.depth_min_m,
                           camera.depth_max_m, threads);
-}
-
-std::string point_text(const Eigen::Vector3d& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
-  return buf;
 }
 
 }  // namespace

@@ -28,6 +28,9 @@ Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& 
 /// frame: x right, y down). UsageError naming `what`.
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);
 
+/// "(x, y, z)" to the millimetre, for messages about a position in metres.
+std::string point_text(const Eigen::Vector3d& p_m);
+
 /// Roll, pitch, yaw (radians) of a rotation: the inverse of pose_from_xyz_rpy's rotation.
 Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R);
 
