@@ -6,6 +6,8 @@
 # best view's void cells, and the ratio of the sampled best view's void cells to the exact
 # one's with the same seed (both scored by the same field-of-view ray cast).
 #   scripts/bench-nbv-scale.sh [SEEDS]     SEEDS default "1 2 3 4"
+# FVX_NBV_BUDGETS="262144 524288 ..." runs the sampled path once per budget (--utility-vectors)
+# against the same exact run: how the best view's void cells fall with the budget.
 # Maps: octomap-maps/slambook_ch13/octomap.bt and octomap-share-data/geb079.bt from
 # FVX_REAL_DATA (default ../shared/data), and any in FVX_NBV_MAPS (space-separated paths).
 # The exact path takes 15-45 s per real map and seed. Then the two paper replicas (two
@@ -16,6 +18,8 @@ cd "$(dirname "$0")/.."
 build="${FVX_BUILD_DIR:-build}"
 data="${FVX_REAL_DATA:-../shared/data}"
 seeds="${1:-1 2 3 4}"
+read -r -a budgets <<< "${FVX_NBV_BUDGETS:-}"
+[ "${#budgets[@]}" -gt 0 ] || budgets=("")  # "": the default budget
 fvx="$build/src/fvx"
 [ -x "$fvx" ] || { scripts/install-deps.sh && scripts/build.sh >/dev/null; }
 command -v /usr/bin/time >/dev/null || { echo "bench-nbv-scale: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
@@ -29,45 +33,50 @@ printf '|---|---|---|---|---|---|---|---|---|---|\n'
 for map in "${maps[@]}"; do
   [ -f "$map" ] || { echo "bench-nbv-scale: $map not found; set FVX_REAL_DATA" >&2; continue; }
   for seed in $seeds; do
-    declare -A best=()
-    for mode in sampled exact; do
+    exact=""
+    for mode in exact "${budgets[@]}"; do
+      flags=(--accumulation exact)
+      [ "$mode" = exact ] || flags=(--accumulation sampled ${mode:+--utility-vectors "$mode"})
       /usr/bin/time -f '%e %M' -o "$tmp/time" "$fvx" nbv "$map" --no-capmap --timing --seed "$seed" \
-        --accumulation "$mode" -o "$tmp/$mode.json"
+        "${flags[@]}" -o "$tmp/run.json"
       read -r wall kb < "$tmp/time"
-      best[$mode]="$(jq '.results.best_void_cells_seen' "$tmp/$mode.json")"
-      ratio=""
-      [ "$mode" = exact ] && ratio="$(awk -v s="${best[sampled]}" -v e="${best[exact]}" 'BEGIN{printf "%.3f", e ? s/e : 0}')"
+      best="$(jq '.results.best_void_cells_seen' "$tmp/run.json")"
+      [ "$mode" = exact ] && exact="$best"
       printf '| %s | %s | %s | %s | %.3f | %.3f | %d | %s | %s | %s |\n' "$(basename "$(dirname "$map")")/$(basename "$map")" \
-        "$seed" "$mode" "$wall" "$(jq '.results.timing_s.total' "$tmp/$mode.json")" \
-        "$(jq '.results.timing_s.accumulation' "$tmp/$mode.json")" "$((kb / 1024))" \
-        "$(jq '.results.utility_vectors' "$tmp/$mode.json")" "${best[$mode]}" "$ratio"
+        "$seed" "${mode:-sampled}" "$wall" "$(jq '.results.timing_s.total' "$tmp/run.json")" \
+        "$(jq '.results.timing_s.accumulation' "$tmp/run.json")" "$((kb / 1024))" \
+        "$(jq '.results.utility_vectors' "$tmp/run.json")" "$best" \
+        "$(awk -v s="$best" -v e="$exact" 'BEGIN{printf "%.3f", e ? s/e : 0}')"
     done
   done
 done
 
 # The paper replicas: two first views (from above the base, from one side), 2.5 cm.
 arm=(--capmap data/arms/fvx-arm.fcm --base 0.2,0,0,0,0,0)
-printf '\n| replica | seed | sampled wall s (median of 3) | sampled U | exact U | exhaustive U | exhaustive wall s | sampled/exact | sampled/exhaustive |\n'
-printf '|---|---|---|---|---|---|---|---|---|\n'
+printf '\n| replica | seed | budget | sampled wall s (median of 3) | sampled U | exact U | exhaustive U | exhaustive wall s | sampled/exact | sampled/exhaustive |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|\n'
 for scene in paper-setting-1 paper-setting-2; do
   for view in "0.05,0,0.95" "0.3,0.75,0.85"; do
     "$fvx" simulate "data/scenes/$scene.ply" --look-at "$view,0.6,0,0.3" -o "$tmp/$scene-$view.pcd" >/dev/null 2>&1
   done
   "$fvx" integrate "$tmp/$scene-"*.pcd -r 0.025 --no-register -o "$tmp/$scene.ot" >/dev/null
   for seed in $seeds; do
-    walls=()
-    for _ in 1 2 3; do
-      /usr/bin/time -f '%e' -o "$tmp/time" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" -o "$tmp/s.json"
-      walls+=("$(cat "$tmp/time")")
-    done
-    median="$(printf '%s\n' "${walls[@]}" | sort -n | sed -n 2p)"
     "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" --accumulation exact -o "$tmp/e.json"
-    /usr/bin/time -f '%e' -o "$tmp/time" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" \
+    /usr/bin/time -f '%e' -o "$tmp/xtime" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" \
       --strategy exhaustive -o "$tmp/x.json"
-    s="$(jq '.results.best_void_cells_seen' "$tmp/s.json")" e="$(jq '.results.best_void_cells_seen' "$tmp/e.json")"
-    x="$(jq '.results.best_void_cells_seen' "$tmp/x.json")"
-    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$scene" "$seed" "$median" "$s" "$e" "$x" \
-      "$(cat "$tmp/time")" "$(awk -v a="$s" -v b="$e" 'BEGIN{printf "%.3f", b ? a/b : 0}')" \
-      "$(awk -v a="$s" -v b="$x" 'BEGIN{printf "%.3f", b ? a/b : 0}')"
+    e="$(jq '.results.best_void_cells_seen' "$tmp/e.json")" x="$(jq '.results.best_void_cells_seen' "$tmp/x.json")"
+    for budget in "${budgets[@]}"; do
+      walls=()
+      for _ in 1 2 3; do
+        /usr/bin/time -f '%e' -o "$tmp/time" "$fvx" nbv "$tmp/$scene.ot" "${arm[@]}" --seed "$seed" \
+          ${budget:+--utility-vectors "$budget"} -o "$tmp/s.json"
+        walls+=("$(cat "$tmp/time")")
+      done
+      median="$(printf '%s\n' "${walls[@]}" | sort -n | sed -n 2p)"
+      s="$(jq '.results.best_void_cells_seen' "$tmp/s.json")"
+      printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$scene" "$seed" "${budget:-default}" "$median" \
+        "$s" "$e" "$x" "$(cat "$tmp/xtime")" "$(awk -v a="$s" -v b="$e" 'BEGIN{printf "%.3f", b ? a/b : 0}')" \
+        "$(awk -v a="$s" -v b="$x" 'BEGIN{printf "%.3f", b ? a/b : 0}')"
+    done
   done
 done

@@ -84,15 +84,16 @@ namespace {
 
 /// Orientations at the candidate cells in utility order, aimed at the voids whose utility
 /// reached each cell, until N valid poses.
-std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, const std::vector<std::size_t>& candidates,
+std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, CandidateOrder& candidates,
                                Pruning& pruning) {
   std::mt19937_64 rng(s.config.seed);
   const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
   std::vector<Pose> poses;
   std::vector<Eigen::Vector3d> used;  // viewpoints that gave a valid pose
   const double separation_sq = s.config.min_separation_m * s.config.min_separation_m;
-  for (const std::size_t cell : candidates) {
+  for (std::size_t n = 0; n < candidates.size(); ++n) {
     if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+    const std::size_t cell = candidates[n];
     const Eigen::Vector3d p = s.grid.center_of(s.grid.key(cell));
     if (std::any_of(used.begin(), used.end(), [&](const Eigen::Vector3d& u) { return (u - p).squaredNorm() < separation_sq; })) {
       ++pruning.too_near_a_tried_cell;
@@ -127,7 +128,7 @@ std::vector<Pose> sample_poses(const Search& s, const utility::Field& field, con
 Result select_frontier_void(Search& s, const utility::Field& field, Result result) {
   Stopwatch t0;
   Pruning& pruning = result.pruning;
-  const std::vector<std::size_t> candidates = s.prune(field.util_m3, result);
+  CandidateOrder candidates = s.prune(field.util_m3, result);
   result.timing.pruning_s = t0.seconds();
 
   t0 = Stopwatch();

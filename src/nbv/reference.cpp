@@ -140,15 +140,16 @@ Result select_frontier(Search& s, Result result) {
 
   t0 = Stopwatch();
   Pruning& pruning = result.pruning;
-  const std::vector<std::size_t> candidates = s.prune(rays_through, result);
+  CandidateOrder candidates = s.prune(rays_through, result);
   result.timing.pruning_s = t0.seconds();
 
   t0 = Stopwatch();
   std::mt19937_64 rng(s.config.seed);
   const double jitter_rad = s.config.jitter_deg * M_PI / 180.0;
   std::vector<Pose> poses;
-  for (const std::size_t cell : candidates) {
+  for (std::size_t n = 0; n < candidates.size(); ++n) {
     if (poses.size() >= std::size_t(s.config.valid_poses)) break;
+    const std::size_t cell = candidates[n];
     ++pruning.cells_tried;
     const Eigen::Vector3d p = s.grid.center_of(s.grid.key(cell));
     for (const Eigen::Matrix3d& R : viewpoints::sample_orientations(p, {target->centroid_m},

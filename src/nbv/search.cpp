@@ -131,7 +131,21 @@ bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_w
   return true;
 }
 
-std::vector<std::size_t> Search::prune(const core::LargeVector<double>& value, Result& result) const {
+std::size_t CandidateOrder::operator[](std::size_t i) {
+  if (i >= sorted_) {
+    const auto before = [v = value_](std::size_t l, std::size_t r) {
+      return (*v)[l] > (*v)[r] || ((*v)[l] == (*v)[r] && l < r);  // a total order: one result from any sort
+    };
+    const std::size_t end = std::min(cells_.size(), std::max({i + 1, 2 * sorted_, sorted_ + 1024}));
+    const auto first = cells_.begin() + std::ptrdiff_t(sorted_), last = cells_.begin() + std::ptrdiff_t(end);
+    std::nth_element(first, last - 1, cells_.end(), before);
+    std::sort(first, last, before);
+    sorted_ = end;
+  }
+  return cells_[i];
+}
+
+CandidateOrder Search::prune(const core::LargeVector<double>& value, Result& result) const {
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < value.size(); ++i) {
     if (!(value[i] > 0.0)) continue;
@@ -141,11 +155,8 @@ std::vector<std::size_t> Search::prune(const core::LargeVector<double>& value, R
     if (keep) candidates.push_back(i);
     if (config.keep_utility_field) result.utility_field.push_back({grid.center_of(k), value[i], keep});
   }
-  // Utility descending, then index: a total order, the same from any sort.
-  std::sort(candidates.begin(), candidates.end(),
-            [&](std::size_t l, std::size_t r) { return value[l] > value[r] || (value[l] == value[r] && l < r); });
   result.pruning.candidate_cells = candidates.size();
-  return candidates;
+  return CandidateOrder(std::move(candidates), value);
 }
 
 void Search::add_pose(const Eigen::Vector3d& p, const Eigen::Matrix3d& R, std::size_t cell, Pruning& pruning,

@@ -25,6 +25,26 @@ struct Pose {
   std::size_t polished_from = kNoCell;      ///< polish: the pose (index) it was turned or moved from
 };
 
+/// Candidate cells in value order (descending; ties: index order), sorted as they are read:
+/// a search reads a few dozen of a real map's millions of candidates, so each read past the
+/// sorted part sorts the next chunk (nth_element, then sort; chunks double), in the order a
+/// full sort gives. Measured on a 17 M-cell grid (slambook at 2.5 cm, 1.8 M candidates):
+/// pruning 0.34 s with the full sort.
+class CandidateOrder {
+ public:
+  CandidateOrder(std::vector<std::size_t> cells, const core::LargeVector<double>& value)
+      : cells_(std::move(cells)), value_(&value) {}
+  std::size_t size() const { return cells_.size(); }
+  bool empty() const { return cells_.empty(); }
+  /// The i-th cell in order; i < size().
+  std::size_t operator[](std::size_t i);
+
+ private:
+  std::vector<std::size_t> cells_;
+  const core::LargeVector<double>* value_;
+  std::size_t sorted_ = 0;  ///< cells_[0, sorted_) are in their final order
+};
+
 struct Search {
   /// `hidden_void_cells`: void cells a taken view left unknown; they leave U (and u_i).
   Search(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
@@ -33,8 +53,9 @@ struct Search {
   /// Position checks in the paper's order, each counted in `pruning` when it fails.
   bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
   /// The cells with a value > 0 that pass keep_position, by value (descending; ties: index
-  /// order), each recorded in result.utility_field (Config::keep_utility_field) and counted in result.pruning.
-  std::vector<std::size_t> prune(const core::LargeVector<double>& value, Result& result) const;
+  /// order), each recorded in result.utility_field (Config::keep_utility_field) and counted
+  /// in result.pruning. `value` must outlive the order.
+  CandidateOrder prune(const core::LargeVector<double>& value, Result& result) const;
   /// Orientation checks: the capability map's bit, then IK when an arm is given (its
   /// restarts seeded by `pose_seed`); fills pose.joints_rad.
   bool keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& pruning) const;
