@@ -1,5 +1,6 @@
 #include "fvx/capmap/capability_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -99,6 +100,17 @@ std::vector<int> CapabilityMap::reachable_directions(const Eigen::Vector3d& p) c
   return out;
 }
 
+Eigen::AlignedBox3d CapabilityMap::reachable_box_base() const {
+  Eigen::AlignedBox3d box;
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * header_.voxel_m);
+  for (const auto& [voxel, words] : voxels_)
+    if (std::any_of(words.begin(), words.end(), [](std::uint64_t w) { return w != 0; })) {
+      box.extend(center_of(voxel) - half);
+      box.extend(center_of(voxel) + half);
+    }
+  return box;
+}
+
 std::vector<Eigen::Vector3d> CapabilityMap::reachable_directions(const Eigen::Isometry3d& T_world_base,
                                                                 const Eigen::Vector3d& p_world) const {
   std::vector<Eigen::Vector3d> out;
@@ -107,7 +119,11 @@ std::vector<Eigen::Vector3d> CapabilityMap::reachable_directions(const Eigen::Is
 }
 
 double CapabilityMap::reachability_index(const Eigen::Vector3d& p) const {
-  return 100.0 * double(reachable_directions(p).size()) / directions_.size();
+  const auto it = voxels_.find(voxel_of(p));
+  if (it == voxels_.end()) return 0.0;
+  int reachable = 0;  // pruning asks this of every cell with utility: count bits, build nothing
+  for (const std::uint64_t word : it->second) reachable += __builtin_popcountll(word);
+  return 100.0 * double(reachable) / directions_.size();
 }
 
 CapabilityMap CapabilityMap::merge(const std::vector<CapabilityMap>& shards) {
@@ -269,6 +285,8 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
     auto& bits = map.voxels_[voxel];
     bits.resize(words);
     for (auto& w : bits) w = r.get<std::uint64_t>();
+    if (h.directions % 64 && bits.back() >> (h.directions % 64))
+      throw FileError(path, "a voxel has bits beyond its " + std::to_string(h.directions) + " directions");
   }
   if (r.at != body.size()) throw FileError(path, "trailing bytes after the voxel list");
   return map;

@@ -69,6 +69,9 @@ utility::Field accumulate_field(const Search& s, Result& result) {
   utility_config.accumulation = s.config.accumulation;
   utility_config.max_vectors = s.config.max_utility_vectors;
   utility_config.seed = s.config.seed;
+  // Pruning reads the field nowhere else (when nothing is left, the field is whole, so that
+  // the reason given is pruning's).
+  if (!s.candidate_box_m.isEmpty()) utility_config.read_box_m = s.candidate_box_m;
   // Void cells a taken view left hidden no longer count in U; they leave u_i too, or a void
   // that views cannot reveal would keep drawing Algorithm 1's vectors to itself.
   const std::optional<frontier_voids::Analysis> visible =

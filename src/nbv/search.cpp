@@ -26,6 +26,16 @@ Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::Alig
   return search_space.merged(view_bounds).intersection(known);
 }
 
+/// The view bounds within the world box around the arm's reachable voxels.
+Eigen::AlignedBox3d candidate_box(const Eigen::AlignedBox3d& view_bounds, const std::optional<Reach>& reach) {
+  if (!reach || !reach->capmap) return view_bounds;
+  const Eigen::AlignedBox3d base = reach->capmap->reachable_box_base();
+  if (base.isEmpty()) return base;
+  Eigen::AlignedBox3d world;
+  for (int c = 0; c < 8; ++c) world.extend(reach->T_world_base * base.corner(Eigen::AlignedBox3d::CornerType(c)));
+  return world.intersection(view_bounds);
+}
+
 /// Per cell of `cluster`, the sum of the unit steps to its unknown face-neighbours.
 std::vector<Eigen::Vector3d> unknown_sides(const map::OccupancyMap& map, const frontiers::Cluster& cluster) {
   std::vector<Eigen::Vector3d> sides;
@@ -52,6 +62,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       config(config_in),
       known_m(known_box(map_in)),
       view_bounds_m(config_in.view_bounds_m ? *config_in.view_bounds_m : known_m),
+      candidate_box_m(candidate_box(view_bounds_m, reach_in)),
       grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m)) {
   // Only voids a frontier touches count: an enclosed void (inside a closed box or a solid)
   // has no free cell beside it, so no view can see into it (paper §IV-B pairs voids with

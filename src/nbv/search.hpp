@@ -94,6 +94,9 @@ struct Search {
   const Config& config;
   Eigen::AlignedBox3d known_m;                   ///< the box of the map's known cells (empty map: empty)
   Eigen::AlignedBox3d view_bounds_m;
+  /// Where keep_position can hold: the view bounds, within the box of the arm's reachable
+  /// voxels. Algorithm 1's field is read only here.
+  Eigen::AlignedBox3d candidate_box_m;
   map::DenseGrid grid;
   core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
   core::LargeVector<float> occupied_distance_sq;      ///< per grid cell: to the nearest occupied cell, cells²

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/ray_box.hpp"
 
 namespace fvx::viewpoints {
 
@@ -44,7 +45,15 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
       count_from_m_(near_targets_count ? 0.0 : depth_min_m) {
   FVX_ASSERT(cells_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
   const std::uint8_t* states = grid_.states();
-  for (std::size_t i = 0; i < cells_.size(); ++i) cells_[i] = std::uint8_t(states[i] | (cells_[i] ? kTarget : 0));
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(grid_.resolution_m());
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    if (cells_[i]) {
+      const Eigen::Vector3d c = grid_.center_of(grid_.key(i));
+      target_box_m_.extend(c - margin);
+      target_box_m_.extend(c + margin);
+    }
+    cells_[i] = std::uint8_t(states[i] | (cells_[i] ? kTarget : 0));
+  }
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
 
@@ -67,8 +76,13 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
   for (const Eigen::Vector3d& ray : rays_sensor_) {
     // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
     ws.ray_targets.clear();
+    const double length = ray.norm();  // per metre of depth
+    const Eigen::Vector3d d = R * ray;   // the walk takes it unit, as the box test does
+    const double exit_m = ray_box_exit(target_box_m_, origin, d.normalized(), depth_max_m_ * length);
+    if (exit_m < 0.0) continue;  // it crosses no target
+    const double range_m = std::max(exit_m, std::min(depth_min_m_, depth_max_m_) * length);
     std::size_t hit = std::size_t(-1);
-    grid_.walk_cells(cells_.data(), origin, R * ray, depth_max_m_ * ray.norm(), [&](std::size_t i, std::uint8_t cell) {
+    grid_.walk_cells(cells_.data(), origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;
       if (map::VoxelState(cell & 3) == map::VoxelState::Occupied) {
         hit = i;

@@ -84,6 +84,9 @@ class CapabilityMap {
   double reachability_index(const Eigen::Vector3d& p_base) const;
   /// The reachable direction indices there.
   std::vector<int> reachable_directions(const Eigen::Vector3d& p_base) const;
+  /// The box of the voxels (as cubes, base frame) with a reachable direction: outside it the
+  /// reachability index is 0. Empty when no voxel has one.
+  Eigen::AlignedBox3d reachable_box_base() const;
 
   /// Non-empty voxels in index order with their bitsets (64 bits per word).
   const std::map<std::int64_t, std::vector<std::uint64_t>>& voxels() const { return voxels_; }

@@ -22,6 +22,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,11 @@ struct Config {
   /// keeps at least kMinSamples frontier cells). Under it, every vector is traced.
   std::size_t max_vectors = std::size_t(1) << 21;
   std::uint64_t seed = 1;       ///< sampled: which frontier cells each stratum draws
+  /// The box (metres) holding every cell whose utility is read afterwards (the search's
+  /// candidate viewpoints: view bounds, the arm's reach). A ray is walked only as far as it
+  /// can still reach a cell of the box, and not at all when it misses the box: the field is
+  /// exact inside it and partial outside. None: the whole grid.
+  std::optional<Eigen::AlignedBox3d> read_box_m;
   /// Called on the calling thread now and then: frontier-voids traced so far, and in all.
   std::function<void(std::size_t done, std::size_t total)> progress;
   std::vector<std::string> validate() const;

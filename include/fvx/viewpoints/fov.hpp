@@ -63,6 +63,10 @@ class FovScorer {
   /// walk loads one byte per cell.
   core::LargeVector<std::uint8_t> cells_;
   static constexpr std::uint8_t kTarget = 4;
+  /// The box of the target cells (as cubes, half a cell wider for rounding): a ray is walked
+  /// only until it leaves it (or to the minimum depth, where a surface voids the ray), and
+  /// not at all when it misses it.
+  Eigen::AlignedBox3d target_box_m_;
   std::vector<Eigen::Vector3d> rays_sensor_;
   double depth_max_m_;
   double depth_min_m_;

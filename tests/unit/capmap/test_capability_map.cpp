@@ -70,6 +70,29 @@ TEST(CapabilityMap, QueriesFindTheVoxelAndTheNearestDirection) {
   EXPECT_FALSE(map.reachable(Eigen::Vector3d(5, 0, 0), d));
 }
 
+// The reachable box bounds the voxels with a reachable direction, as cubes, and no more:
+// every query outside it has index 0, and each face of it touches such a voxel.
+TEST(CapabilityMap, TheReachableBoxHoldsEveryReachableVoxelTightly) {
+  CapabilityMap map(small_header());
+  EXPECT_TRUE(map.reachable_box_base().isEmpty());
+  const std::vector<Eigen::Vector3d> reached = {{0.33, -0.47, 0.81}, {-0.62, 0.15, 0.05}, {0.71, 0.88, 1.32}};
+  for (const auto& p : reached) map.set(map.voxel_of(p), 7);
+  const Eigen::AlignedBox3d box = map.reachable_box_base();
+  for (const auto& p : reached) {
+    EXPECT_TRUE(box.contains(map.center_of(map.voxel_of(p))));
+    EXPECT_GT(map.reachability_index(p), 0.0);
+  }
+  EXPECT_NEAR(box.min().x(), map.center_of(map.voxel_of(reached[1])).x() - 0.05, 1e-12);
+  EXPECT_NEAR(box.max().z(), map.center_of(map.voxel_of(reached[2])).z() + 0.05, 1e-12);
+  for (double x = -1.0; x < 1.0; x += 0.03)
+    for (double z = 0.0; z < 1.5; z += 0.03) {
+      const Eigen::Vector3d p(x, 0.15, z);
+      if (!box.contains(p)) {
+        EXPECT_EQ(map.reachability_index(p), 0.0) << p.transpose();
+      }
+    }
+}
+
 TEST(CapabilityMap, WorldFrameQueriesGoThroughTheBasePose) {
   CapabilityMap map(small_header());
   const Eigen::Vector3d p_base(0.33, -0.47, 0.81);
@@ -129,6 +152,26 @@ TEST(CapabilityMap, CorruptFilesAreRefused) {
     }
   }
   EXPECT_THROW(small_map().save(dir / "map.bin"), FileError);
+}
+
+// A bit past the last direction (here in the last voxel's last word, with a valid checksum)
+// would make counts and lists of directions disagree: the file is refused.
+TEST(CapabilityMap, BitsBeyondTheLastDirectionAreRefused) {
+  const test::TempDir dir;
+  small_map().save(dir / "good.fcm");
+  std::string bytes = bytes_of(dir / "good.fcm");
+  std::string body = bytes.substr(0, bytes.size() - 8);
+  body[body.size() - 1] = char(body[body.size() - 1] | 0x80);  // bit 63 of the last word (200 directions)
+  std::uint64_t hash = 1469598103934665603ull;  // the file's checksum (FNV-1a 64 with this offset basis)
+  for (const char c : body) hash = (hash ^ std::uint8_t(c)) * 1099511628211ull;
+  for (int i = 0; i < 8; ++i) body.push_back(char(hash >> (8 * i) & 0xff));
+  std::ofstream(dir / "bits.fcm", std::ios::binary) << body;
+  try {
+    CapabilityMap::load(dir / "bits.fcm");
+    ADD_FAILURE() << "accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond its 200 directions"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

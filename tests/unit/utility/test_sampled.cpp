@@ -179,6 +179,35 @@ TEST(SampledUtility, ItRanksCellsLikeTheExactField) {
   EXPECT_GE(per_cell, 0.75) << "blocks: " << per_block;
 }
 
+// The field is read only at candidate viewpoints: rays are walked only as far as the read
+// box, and not when they miss it. Inside the box the field and its contributors must be
+// those of the whole field (exact and sampled alike); outside, fewer cells get utility.
+TEST(SampledUtility, InsideTheReadBoxTheFieldIsTheWholeField) {
+  const Eigen::AlignedBox3d read_box(Eigen::Vector3d(0.1, -0.7, 0.3), Eigen::Vector3d(0.9, 0.1, 1.0));
+  for (const Accumulation mode : {Accumulation::Exact, Accumulation::Sampled}) {
+    Config config;
+    config.accumulation = mode;
+    config.max_vectors = 50000;
+    config.min_range_m = 0.1;
+    const Field whole = accumulate(*crates().grid, crates().a, config);
+    config.read_box_m = read_box;
+    const Field boxed = accumulate(*crates().grid, crates().a, config);
+    const map::DenseGrid& grid = *crates().grid;
+    std::size_t inside = 0, inside_with_utility = 0;
+    for (std::size_t i = 0; i < grid.cell_count(); ++i) {
+      if (!read_box.contains(grid.center_of(grid.key(i)))) continue;
+      ++inside;
+      inside_with_utility += whole.util_m3[i] > 0;
+      ASSERT_EQ(boxed.util_m3[i], whole.util_m3[i]) << to_string(mode) << " cell " << i;
+      ASSERT_EQ(boxed.contributors[i], whole.contributors[i]) << to_string(mode) << " cell " << i;
+    }
+    EXPECT_GT(inside_with_utility, 1000u) << "the box should hold much of the field";
+    EXPECT_LT(inside, grid.cell_count() / 2) << "and leave much of the grid out";
+    EXPECT_LT(boxed.cells, whole.cells);
+    EXPECT_EQ(boxed.vectors, whole.vectors);
+  }
+}
+
 TEST(SampledUtility, NamesAndBadConfigs) {
   EXPECT_EQ(parse_accumulation("exact"), Accumulation::Exact);
   EXPECT_EQ(parse_accumulation("sampled"), Accumulation::Sampled);

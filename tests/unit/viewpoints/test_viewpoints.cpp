@@ -80,7 +80,8 @@ struct RandomGrid {
   map::OccupancyMap map{0.1};
   std::unique_ptr<map::DenseGrid> grid;
   core::LargeVector<std::uint8_t> target;
-  explicit RandomGrid(std::uint32_t seed) {
+  /// Targets only in `target_box` (all cells when it is empty).
+  explicit RandomGrid(std::uint32_t seed, const Eigen::AlignedBox3d& target_box = Eigen::AlignedBox3d()) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int z = 0; z < 10; ++z)
@@ -94,14 +95,17 @@ struct RandomGrid {
     grid = std::make_unique<map::DenseGrid>(
         map, Eigen::AlignedBox3d(Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector3d(1.4, 1.2, 1.0)));
     target.resize(grid->cell_count());
-    for (auto& t : target) t = u(rng) < 0.3;
+    for (std::size_t i = 0; i < target.size(); ++i)
+      target[i] = u(rng) < 0.3 && (target_box.isEmpty() || target_box.contains(grid->center_of(grid->key(i))));
   }
 };
 
 // The oracle: the cells whose boxes the segment [0, range] enters, in order of entry; walk
-// them until an occupied one.
+// them until an occupied one. An occupied cell whose centre's depth along `axis` is below
+// depth_min gives no measurement: nothing on that ray counts.
 std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
-                                  double range) {
+                                  double range, double depth_min = 0.0,
+                                  const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ()) {
   const Eigen::Vector3d d = dir.normalized();
   std::vector<std::pair<double, std::size_t>> entered;
   for (std::size_t i = 0; i < g.grid->cell_count(); ++i) {
@@ -123,7 +127,10 @@ std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o,
   std::sort(entered.begin(), entered.end());
   std::set<std::size_t> seen;
   for (const auto& [t, i] : entered) {
-    if (g.grid->state_at(i) == map::VoxelState::Occupied) break;
+    if (g.grid->state_at(i) == map::VoxelState::Occupied) {
+      if (depth_min > 0.0 && (g.grid->center_of(g.grid->key(i)) - o).dot(axis) < depth_min) return {};
+      break;
+    }
     if (g.target[i]) seen.insert(i);
   }
   return seen;
@@ -158,6 +165,49 @@ TEST(FovScorer, CountsTheDistinctTargetCellsTheRaysCross) {
       ASSERT_EQ(score.targets_seen, expected.size()) << "seed " << seed << " pose " << pose;
       ASSERT_EQ(seen, std::vector<std::size_t>(expected.begin(), expected.end()));
       ASSERT_GT(score.cells_visited, 0u);
+    }
+  }
+}
+
+// Targets gathered in one corner of the grid: the scorer walks a ray only while it can still
+// cross one (and, with a minimum depth, at least that far, where a surface voids the ray).
+// It must count what the oracle counts over the whole ray, with and without a minimum
+// depth, and walk fewer cells than with targets everywhere.
+TEST(FovScorer, RaysStopWhereNoTargetIsLeftAndCountAsTheWholeRay) {
+  const Eigen::AlignedBox3d corner(Eigen::Vector3d(0.8, 0.6, 0.5), Eigen::Vector3d(1.3, 1.1, 0.9));
+  for (std::uint32_t seed : {5u, 6u}) {
+    const RandomGrid g(seed, corner), everywhere(seed);
+    std::mt19937 rng(seed + 7);
+    std::uniform_real_distribution<double> u(0.05, 0.95);
+    const auto rays = ray_fan(io::Intrinsics{}, 8, 6);
+    for (const double depth_min : {0.0, 0.35, 0.7}) {
+      const FovScorer scorer(*g.grid, g.target, rays, 0.9, depth_min);
+      const FovScorer whole(*everywhere.grid, everywhere.target, rays, 0.9, depth_min);
+      FovScorer::Workspace ws;
+      std::size_t total = 0;
+      std::uint64_t walked = 0, walked_whole = 0;
+      for (int pose = 0; pose < 30; ++pose) {
+        // Half the poses anywhere, half beside the targets (rays leave their box early).
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+        const Eigen::Vector3d from_middle = T.translation() - Eigen::Vector3d(0.7, 0.6, 0.5);
+        if (pose % 2) T.translation() = corner.center() + 0.8 * from_middle.cwiseProduct(Eigen::Vector3d(0.5, 0.5, 0.6));
+        T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.2, u(rng) - 0.3, u(rng) - 0.4), 6.0 * u(rng));
+        std::set<std::size_t> expected;
+        for (const auto& r : rays) {
+          const auto s = oracle_seen(g, T.translation(), T.linear() * r, 0.9 * r.norm(), depth_min, T.linear().col(2));
+          expected.insert(s.begin(), s.end());
+        }
+        std::vector<std::size_t> seen;
+        const auto score = scorer.score(T, ws, &seen);
+        ASSERT_EQ(seen, std::vector<std::size_t>(expected.begin(), expected.end()))
+            << "seed " << seed << " pose " << pose << " depth_min " << depth_min;
+        total += seen.size();
+        walked += score.cells_visited;
+        walked_whole += whole.score(T, ws).cells_visited;
+      }
+      EXPECT_GT(total, 0u);
+      EXPECT_LT(walked, walked_whole);
     }
   }
 }
