@@ -208,9 +208,11 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
   const unsigned threads =
       std::max(1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
                                       unsigned(std::max<std::size_t>(1, poses.size()))));
+  if (workspaces.size() < threads) workspaces.resize(threads);
   std::atomic<std::size_t> next{0};
-  auto work = [&](bool report) {
-    viewpoints::FovScorer::Workspace ws;
+  auto work = [&](unsigned t) {
+    const bool report = t == 0;
+    viewpoints::FovScorer::Workspace& ws = workspaces[t];
     for (std::size_t i = next++; i < poses.size(); i = next++) {
       scores[i] = scorer.score(poses[i].T_world_sensor, ws);
       if (report && config.progress && i % std::max<std::size_t>(256, poses.size() / 100) == 0)
@@ -218,8 +220,8 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
-  work(true);
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
   for (auto& t : pool) t.join();
   std::vector<std::size_t> seen(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -240,7 +242,8 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     if (score[i] > 0) order.push_back(i);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return score[l] > score[r]; });
   std::vector<View> views;
-  viewpoints::FovScorer::Workspace ws;
+  if (workspaces.empty()) workspaces.resize(1);
+  viewpoints::FovScorer::Workspace& ws = workspaces.front();
   std::vector<std::size_t> seen;
   for (const std::size_t i : order) {
     if (views.size() >= std::size_t(config.top)) break;

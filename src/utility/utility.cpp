@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <exception>
 #include <limits>
@@ -38,7 +39,10 @@ namespace {
 /// threads) and, per cell, its kContributors largest contributors (Field::contributors),
 /// ordered by rank in `order`. Both are the same whatever order frontier-voids arrive in.
 struct Shared {
-  core::LargeVector<std::uint64_t> util_cells;
+  /// The integer sums, each held in the bytes of the double the field reports (read and
+  /// written through memcpy), so that the field takes no second grid-sized array: on a
+  /// 17 M-cell grid that is 136 MB of fresh pages less.
+  core::LargeVector<double> util_cells;
   core::LargeVector<std::array<std::int32_t, kContributors>> contributors;
   std::vector<std::uint32_t> rank;  ///< per frontier-void: its place in `order`
   std::mutex mutex;
@@ -59,7 +63,10 @@ void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
   const std::lock_guard<std::mutex> lock(shared.mutex);
   const std::uint32_t rank = shared.rank[std::size_t(fv)];
   for (const std::size_t index : w.touched) {
-    shared.util_cells[index] += weight * w.passes[index];
+    std::uint64_t sum;
+    std::memcpy(&sum, &shared.util_cells[index], sizeof sum);
+    sum += weight * w.passes[index];
+    std::memcpy(&shared.util_cells[index], &sum, sizeof sum);
     w.passes[index] = 0;
     std::int32_t carry = fv;  // insert by rank, dropping the last
     for (auto& slot : shared.contributors[index]) {
@@ -250,11 +257,13 @@ Field to_field(Shared& shared, double R, const std::vector<Plan>& plans, const s
   for (const Worker& w : workers) field.vectors += w.vectors;
   field.exact_vectors = exact_vectors;
   for (std::size_t i = 0; i < plans.size(); ++i) field.sampled |= plans[i].samples < frontier_cells[i];
-  field.util_m3.resize(shared.util_cells.size());
-  for (std::size_t i = 0; i < shared.util_cells.size(); ++i) {
-    field.util_m3[i] = double(shared.util_cells[i]) * cell_m3;
-    field.cells += shared.util_cells[i] > 0;
-    field.max_m3 = std::max(field.max_m3, field.util_m3[i]);
+  field.util_m3 = std::move(shared.util_cells);
+  for (double& value : field.util_m3) {
+    std::uint64_t sum;
+    std::memcpy(&sum, &value, sizeof sum);
+    value = double(sum) * cell_m3;
+    field.cells += sum > 0;
+    field.max_m3 = std::max(field.max_m3, value);
   }
   field.contributors = std::move(shared.contributors);
   return field;
@@ -285,7 +294,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
       1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
                              unsigned(std::max<std::size_t>(1, order.size()))));
   Shared shared;
-  shared.util_cells.assign(grid.cell_count(), 0);
+  shared.util_cells.assign(grid.cell_count(), 0.0);  // all bits zero: the sum 0
   shared.contributors.assign(grid.cell_count(), {-1, -1, -1, -1});
   shared.rank.assign(a.frontier_voids.size(), 0);
   for (std::size_t i = 0; i < order.size(); ++i) shared.rank[std::size_t(order[i])] = std::uint32_t(i);
