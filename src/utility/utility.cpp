@@ -68,8 +68,11 @@ void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
     sum += weight * w.passes[index];
     std::memcpy(&shared.util_cells[index], &sum, sizeof sum);
     w.passes[index] = 0;
+    auto& slots = shared.contributors[index];
+    // Frontier-voids arrive about in rank order: most cells already hold four better ones.
+    if (slots.back() >= 0 && shared.rank[std::size_t(slots.back())] < rank) continue;
     std::int32_t carry = fv;  // insert by rank, dropping the last
-    for (auto& slot : shared.contributors[index]) {
+    for (auto& slot : slots) {
       if (slot >= 0 && shared.rank[std::size_t(slot)] < rank) continue;
       std::swap(slot, carry);
       if (carry < 0) break;
