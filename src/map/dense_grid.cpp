@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "fvx/core/error.hpp"
 
@@ -82,27 +83,33 @@ void distance_1d(const std::vector<float>& f, std::vector<float>& d, std::vector
 
 }  // namespace
 
-core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state) {
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads) {
   const Eigen::Vector3i n = grid.size();
   core::LargeVector<float> dist(grid.cell_count());
   for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = grid.state_at(i) == state ? 0.0f : INFINITY;
   const std::size_t stride[3] = {1, std::size_t(n.x()), std::size_t(n.x()) * std::size_t(n.y())};
-  const int longest = n.maxCoeff();
-  std::vector<float> f(std::size_t(std::max(longest, 0))), d(f.size()), z(f.size() + 1);
-  std::vector<int> v(f.size());
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   for (int axis = 0; axis < 3; ++axis) {
     const int len = n[axis];
-    f.resize(std::size_t(len));
-    d.resize(std::size_t(len));
-    // Every line along `axis`: one per cell of the plane of the other two axes (b, c).
+    // Every line along `axis`: one per cell of the plane of the other two axes (b, c). Lines
+    // are independent: threads take slabs of b, each with its own scratch.
     const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-    for (int ob = 0; ob < n[b]; ++ob)
-      for (int oc = 0; oc < n[c]; ++oc) {
-        const std::size_t start = std::size_t(ob) * stride[b] + std::size_t(oc) * stride[c];
-        for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
-        distance_1d(f, d, v, z);
-        for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
-      }
+    auto lines = [&](int b_from, int b_to) {
+      std::vector<float> f(static_cast<std::size_t>(len)), d(f.size()), z(f.size() + 1);
+      std::vector<int> v(f.size());
+      for (int ob = b_from; ob < b_to; ++ob)
+        for (int oc = 0; oc < n[c]; ++oc) {
+          const std::size_t start = std::size_t(ob) * stride[b] + std::size_t(oc) * stride[c];
+          for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
+          distance_1d(f, d, v, z);
+          for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
+        }
+    };
+    const int parts = int(std::min<unsigned>(threads, unsigned(std::max(1, n[b]))));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < parts; ++t) pool.emplace_back(lines, n[b] * t / parts, n[b] * (t + 1) / parts);
+    lines(0, n[b] / parts);
+    for (auto& t : pool) t.join();
   }
   return dist;
 }

@@ -75,7 +75,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   for (const map::VoxelKey& k : hidden_void_cells)
     if (grid.contains(k)) void_label[grid.index(k)] = -1;
   any_hidden = !hidden_void_cells.empty();
-  occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied);
+  occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads);
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));

@@ -91,8 +91,9 @@ class DenseGrid {
 
 /// Per grid cell, the squared distance in cells to the centre of the nearest cell in `state`
 /// within the grid (an exact Euclidean distance transform, Felzenszwalb & Huttenlocher 2012,
-/// three separable passes); +infinity when the grid holds no such cell.
-core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state);
+/// three separable passes); +infinity when the grid holds no such cell. The lines of each
+/// pass are split over `threads` threads (0: all cores); the result does not depend on it.
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads = 0);
 
 template <typename Visit>
 RayOutcome DenseGrid::walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m,

@@ -112,12 +112,15 @@ TEST(DenseGrid, SquaredDistanceToOccupiedEqualsBruteForce) {
       occupied.emplace_back(k.x, k.y, k.z);
     }
   ASSERT_GT(occupied.size(), 20u);
-  const auto d = squared_distance_to(grid, VoxelState::Occupied);
-  for (std::size_t i = 0; i < grid.cell_count(); ++i) {
-    const VoxelKey k = grid.key(i);
-    int best = std::numeric_limits<int>::max();
-    for (const auto& o : occupied) best = std::min(best, (o - Eigen::Vector3i(k.x, k.y, k.z)).squaredNorm());
-    ASSERT_EQ(d[i], float(best)) << "cell " << i;
+  // Any split of the lines over threads (more threads than some axes have lines) gives it.
+  for (const unsigned threads : {1u, 2u, 5u, 64u}) {
+    const auto d = squared_distance_to(grid, VoxelState::Occupied, threads);
+    for (std::size_t i = 0; i < grid.cell_count(); ++i) {
+      const VoxelKey k = grid.key(i);
+      int best = std::numeric_limits<int>::max();
+      for (const auto& o : occupied) best = std::min(best, (o - Eigen::Vector3i(k.x, k.y, k.z)).squaredNorm());
+      ASSERT_EQ(d[i], float(best)) << "cell " << i << ", threads " << threads;
+    }
   }
   // No cell in that state: infinity everywhere.
   OccupancyMap free_only(0.1);
