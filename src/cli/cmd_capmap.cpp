@@ -90,8 +90,8 @@ int build(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx capmap build: give one URDF");
   const std::string output = need(args, "output", "build");
   if (lowercase_extension(output) != ".fcm") throw UsageError("fvx capmap build: --output " + output + ": expected a .fcm file");
-  const capmap::Arm arm = load_arm(args.positional[1], need(args, "base", "build"), need(args, "tip", "build"), args);
-  capmap::BuildConfig c;
+  const std::string base = need(args, "base", "build"), tip = need(args, "tip", "build");
+  capmap::BuildConfig c;  // every option is checked before the URDF is read
   args.read("voxel", c.voxel_m);
   args.read("directions", c.directions);
   args.read("position-tolerance", c.position_tolerance_m);
@@ -108,6 +108,8 @@ int build(const Args& args, Json& report) {
     c.shard_count = std::uint32_t(parse_int_in(s.substr(slash + 1), "--shard N", 1, 100000));
     c.shard_index = std::uint32_t(parse_int_in(s.substr(0, slash), "--shard I", 1, c.shard_count)) - 1;
   }
+  throw_if_problems("fvx capmap build", c.validate());
+  const capmap::Arm arm = load_arm(args.positional[1], base, tip, args);
   Progress progress(args.has("progress"));
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);

@@ -91,6 +91,10 @@ TEST(CliCapmap, BadInputIsRefusedOnOneLine) {
       {"capmap build " + arm + " --base forearm --tip turret -o x.fcm", 2, "not below"},
       {"capmap build " + arm + " --base base_link --tip kinect_optical --voxel 0 -o x.fcm", 2, "--voxel"},
       {"capmap build " + arm + " --base base_link --tip kinect_optical -o x.bin", 2, "x.bin"},
+      // Options are checked before the URDF is read: a bad value is named even when the URDF is too.
+      {"capmap build broken.urdf --base a --tip a --voxel -1 -o x.fcm", 2, "--voxel"},
+      {"capmap build missing.urdf --base a --tip a --shard 4/3 -o x.fcm", 2, "--shard"},
+      {"capmap build missing.urdf --base a --tip a --angle-tolerance 400 -o x.fcm", 2, "--angle-tolerance"},
       {"capmap info truncated.fcm", 1, "truncated.fcm"},
       {"capmap info flipped.fcm", 1, "flipped.fcm"},
       {"capmap query good.fcm --point 1,2", 2, "--point"},
