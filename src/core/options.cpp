@@ -127,6 +127,19 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv) {
   return args;
 }
 
+std::string range_text(const Range& range) {
+  const auto bound = [](double v) {
+    if (std::isinf(v)) return std::string(v < 0 ? "-inf" : "inf");
+    if (v >= 0x1p63) return std::string("2^63-1");  // a 64-bit integer option's own limit
+    std::ostringstream out;
+    if (v == std::floor(v) && std::abs(v) < 1e15) out << (long long)v;  // whole numbers in full
+    else out << v;
+    return out.str();
+  };
+  return (range.min_exclusive || std::isinf(range.min) ? "(" : "[") + bound(range.min) + ", " + bound(range.max) +
+         (std::isinf(range.max) ? ")" : "]");
+}
+
 std::string help_text(const CommandSpec& spec) {
   std::ostringstream out;
   out << "usage: fvx " << spec.name << " " << spec.usage << "\n\n" << spec.summary << "\n\noptions:\n";
@@ -141,8 +154,13 @@ std::string help_text(const CommandSpec& spec) {
   }
   for (std::size_t i = 0; i < left.size(); ++i) {
     const OptionSpec& o = spec.options[i];
-    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << o.help
-        << (o.default_text.empty() ? "" : " (default " + o.default_text + ")") << "\n";
+    std::vector<std::string> notes;
+    if (!o.default_text.empty()) notes.push_back("default " + o.default_text);
+    if (o.range) notes.push_back("range " + range_text(*o.range));
+    std::string tail;
+    for (const std::string& note : notes) tail += (tail.empty() ? " (" : "; ") + note;
+    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << o.help << (tail.empty() ? "" : tail + ")")
+        << "\n";
   }
   out << "\nSee 'man fvx-" << spec.name << "' for details.\n";
   return out.str();

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "cli_support.hpp"
 #include "command_table.hpp"
@@ -63,9 +64,31 @@ TEST(Manual, EveryDeclaredDefaultIsTheManPagesDefault) {
       EXPECT_NE(paragraph.find("default " + value), std::string::npos)
           << "fvx-" << command.spec.name << ".1: " << flag << " should say 'default " << value << "':" << paragraph;
       const std::string help = cli::help_text(command.spec);
-      EXPECT_NE(help.find("(default " + option.default_text + ")"), std::string::npos) << flag;
+      const std::string range = option.range ? "; range " + range_text(*option.range) : "";
+      EXPECT_NE(help.find("(default " + option.default_text + range + ")"), std::string::npos) << flag;
     }
   }
+}
+
+// --help shows the values each numeric option accepts, as an interval that says which ends
+// are open; the checks of parsing refuse what lies outside it.
+TEST(Manual, HelpShowsEveryDeclaredRange) {
+  EXPECT_EQ(range_text(in(1, 1024)), "[1, 1024]");
+  EXPECT_EQ(range_text(above(0, 10)), "(0, 10]");
+  EXPECT_EQ(range_text(above(0)), "(0, inf)");
+  EXPECT_EQ(range_text(in(0.5, 2.25)), "[0.5, 2.25]");
+  EXPECT_EQ(range_text(in(0, double(std::numeric_limits<long long>::max()))), "[0, 2^63-1]");
+  std::size_t ranged = 0;
+  for (const cli::Command& command : cli::commands()) {
+    const std::string help = cli::help_text(command.spec);
+    for (const cli::OptionSpec& option : command.spec.options) {
+      if (!option.range) continue;
+      ++ranged;
+      EXPECT_NE(help.find("range " + range_text(*option.range) + ")"), std::string::npos)
+          << command.spec.name << " --" << option.name;
+    }
+  }
+  EXPECT_GT(ranged, 50u);  // every numeric option declares its range
 }
 
 TEST(Manual, EveryCommandHasHelp) {

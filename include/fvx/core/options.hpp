@@ -106,7 +106,11 @@ std::vector<OptionSpec> options(std::initializer_list<std::vector<OptionSpec>> t
 /// option name is close to a known one.
 Args parse_args(const CommandSpec& spec, int argc, char** argv);
 
-/// `fvx <command> --help`: usage line, summary, and the option table.
+/// The values a range accepts as --help shows them: an interval, "(0, 10]", "[1, inf)".
+std::string range_text(const Range& range);
+
+/// `fvx <command> --help`: usage line, summary, and the option table; each option's help
+/// ends with "(default D; range R)" for what it declares.
 std::string help_text(const CommandSpec& spec);
 
 /// Levenshtein distance, for "did you mean".
