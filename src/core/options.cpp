@@ -154,13 +154,16 @@ std::string help_text(const CommandSpec& spec) {
   }
   for (std::size_t i = 0; i < left.size(); ++i) {
     const OptionSpec& o = spec.options[i];
-    std::vector<std::string> notes;
-    if (!o.default_text.empty()) notes.push_back("default " + o.default_text);
-    if (o.range) notes.push_back("range " + range_text(*o.range));
-    std::string tail;
-    for (const std::string& note : notes) tail += (tail.empty() ? " (" : "; ") + note;
-    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << o.help << (tail.empty() ? "" : tail + ")")
-        << "\n";
+    // "(default D; range R)"; a help that ends in its own "(default: …)" takes the range inside.
+    std::string help = o.help, notes = o.default_text.empty() ? "" : "default " + o.default_text;
+    if (o.range) notes += (notes.empty() ? "" : "; ") + std::string("range ") + range_text(*o.range);
+    if (!notes.empty() && o.default_text.empty() && !help.empty() && help.back() == ')') {
+      help.pop_back();
+      help += "; " + notes + ")";
+    } else if (!notes.empty()) {
+      help += " (" + notes + ")";
+    }
+    out << left[i] << std::string(width + 2 - left[i].size(), ' ') << help << "\n";
   }
   out << "\nSee 'man fvx-" << spec.name << "' for details.\n";
   return out.str();

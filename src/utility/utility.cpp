@@ -152,26 +152,22 @@ std::vector<map::VoxelKey> draw(const std::vector<const std::vector<map::VoxelKe
 }
 
 /// Algorithm 1 for one frontier-void: every corner, from each of `starts`; counts passes in `w`.
+/// `read_box`: Config::read_box_m grown by one cell (any point of a cell whose centre lies in
+/// the box is within half a cell's diagonal of it), or none.
 void trace_frontier_void(const map::DenseGrid& grid, const frontier_voids::Analysis& a, std::int32_t fv_index,
-                         const std::vector<map::VoxelKey>& starts, const Config& config, Worker& w) {
+                         const std::vector<map::VoxelKey>& starts, const Config& config,
+                         const std::optional<Eigen::AlignedBox3d>& read_box, Worker& w) {
   const auto& fv = a.frontier_voids[std::size_t(fv_index)];
   const auto corners = a.void_clusters[std::size_t(fv.void_id)].corners();
   const double min_range_m = config.min_range_m;
-  Eigen::AlignedBox3d read_box;
-  if (config.read_box_m) {
-    const Eigen::Vector3d cell = Eigen::Vector3d::Constant(grid.resolution_m());
-    read_box = Eigen::AlignedBox3d(config.read_box_m->min() - cell, config.read_box_m->max() + cell);
-  }
   for (const map::VoxelKey& f : starts) {
     const Eigen::Vector3d start = grid.center_of(f);
     for (const Eigen::Vector3d& c : corners) {
       const Eigen::Vector3d dir = start - c;
       if (dir.norm() < 1e-9) continue;  // a corner in the frontier cell: no direction
       ++w.vectors;
-      // Any point of a cell whose centre lies in the read box is within half a cell's
-      // diagonal of it: the box grows by one cell.
-      const double range_m = config.read_box_m ? ray_box_exit(read_box, start, dir.normalized(), config.sensor_range_m)
-                                               : config.sensor_range_m;
+      const double range_m = read_box ? ray_box_exit(*read_box, start, dir.normalized(), config.sensor_range_m)
+                                      : config.sensor_range_m;
       if (range_m < 0.0) continue;  // no cell it passes is read
       bool far_enough = min_range_m <= 0.0;  // cells along a ray only get farther
       grid.walk(start, dir, range_m, [&](std::size_t index, map::VoxelState s) {
@@ -301,6 +297,11 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   shared.contributors.assign(grid.cell_count(), {-1, -1, -1, -1});
   shared.rank.assign(a.frontier_voids.size(), 0);
   for (std::size_t i = 0; i < order.size(); ++i) shared.rank[std::size_t(order[i])] = std::uint32_t(i);
+  std::optional<Eigen::AlignedBox3d> read_box;
+  if (config.read_box_m) {
+    const Eigen::Vector3d cell = Eigen::Vector3d::Constant(R);
+    read_box = Eigen::AlignedBox3d(config.read_box_m->min() - cell, config.read_box_m->max() + cell);
+  }
   std::vector<Worker> workers(threads);
   std::atomic<std::size_t> next{0};
   auto work = [&](Worker& w, bool report) {
@@ -310,7 +311,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
       std::vector<const std::vector<map::VoxelKey>*> lists;
       for (const int id : a.frontier_voids[std::size_t(order[i])].frontier_ids) lists.push_back(&starts[std::size_t(id)]);
       const auto drawn = draw(lists, frontier_cells[i], plans[i].samples, config.seed, order[i]);
-      trace_frontier_void(grid, a, order[i], drawn, config, w);
+      trace_frontier_void(grid, a, order[i], drawn, config, read_box, w);
       flush(w, plans[i].weight, order[i], shared);
     }
   };
