@@ -61,9 +61,9 @@ const CommandSpec kExploreSpec = {
 
 namespace {
 
-const std::vector<std::string> kColumns = {"view",       "integration_s",  "search_s",  "void_cells",
-                                           "utility_dm3", "map_void_cells", "known_pct", "target_seen",
-                                           "revealed",   "u_in_solid"};
+const std::vector<std::string> kColumns = {"view",           "integration_s", "search_s",       "void_cells",
+                                           "utility_dm3",    "map_void_cells", "void_known_pct", "known_pct",
+                                           "target_seen",    "revealed",      "u_in_solid"};
 
 /// The loop's settings from the options (all but the scene's: bounds and start come later).
 session::ExploreConfig parse_config(const Args& args) {
@@ -145,21 +145,28 @@ int run_explore(const Args& args) {
   // Inputs: the scene, the arm; then the start pose against both.
   const sim::Scene scene = scene_from(args.positional[0], args);
   ArmInputs arm_inputs;
-  load_arm_inputs(args, "fvx explore", arm_inputs);
+  if (args.has("capmap") && !args.has("base") && !scene.info.bases.empty()) {  // where the scene puts the arm
+    const auto& b = scene.info.bases.front();
+    const double d = M_PI / 180.0;
+    nbv::load_arm(args.get("capmap"), args.has("arm") ? args.get("arm") : "",
+                  pose_from_xyz_rpy(b[0], b[1], b[2], b[3] * d, b[4] * d, b[5] * d), "fvx explore", arm_inputs);
+  } else {
+    load_arm_inputs(args, "fvx explore", arm_inputs);
+  }
   pc.bounds_m = parse_bounds(args);
   if (!pc.bounds_m) pc.bounds_m = scene.info.search_space;
   if (!pc.bounds_m)
     throw UsageError("fvx explore: the scene has no search space (sidecar search_space); give --bounds");
   const Eigen::AlignedBox3d S = *pc.bounds_m;
-  config.T_world_sensor_start =
-      args.has("start") ? parse_look_at(args.get("start"), "--start")
-                        : session::default_start(arm_inputs.reach, arm_inputs.T_world_base, S,
-                                                 S.center() - Eigen::Vector3d(0, 0, 0.1));
+  std::optional<Eigen::Isometry3d> start;
+  if (args.has("start")) start = parse_look_at(args.get("start"), "--start");
   throw_if_problems("fvx explore", config.validate());
   Progress progress(args.has("progress"));
-  const session::SimulatedWorld world(scene, pc.resolution_m, S, config.T_world_sensor_start, arm_inputs.reach,
-                                      nc.sensor, config.seed, nc.threads,
+  const session::SimulatedWorld world(scene, pc.resolution_m, S, start, arm_inputs.T_world_base,
+                                      S.center() - Eigen::Vector3d(0, 0, 0.1), arm_inputs.reach, nc.sensor,
+                                      config.seed, nc.threads,
                                       [&](const std::string& stage) { progress.update("fvx explore: " + stage); });
+  config.T_world_sensor_start = world.start();
   const sim::ExplorationScore& score = world.score();
   // The session directory: created only now that every input is good.
   session::Recorder recorder(dir.string(),
@@ -180,7 +187,7 @@ int run_explore(const Args& args) {
                                                      pc.resolution_m, joint_names, nc.strategy, args.has("timing"))));
         progress.update("fvx explore: view " + std::to_string(v.view + 1) + ": " + std::to_string(row.map_void_cells) +
                         " void cells, next view sees " + std::to_string(row.void_cells) + ", " +
-                        fixed(100.0 * row.truth->known_fraction, 1) + " % known" +
+                        fixed(100.0 * row.truth->void_known_fraction, 1) + " % of the void known" +
                         (row.truth->target_seen ? ", target seen" : ""));
       });
   progress.finish();

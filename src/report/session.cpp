@@ -45,6 +45,7 @@ const std::map<std::string, Cell>& columns() {
       {"utility_dm3", [](R r) { return r.searched ? fixed(r.utility_dm3, 2) : "-"; }},
       {"map_void_cells", [](R r) { return std::to_string(r.map_void_cells); }},
       {"known_pct", [](R r) { return r.truth ? fixed(100.0 * r.truth->known_fraction, 1) : "-"; }},
+      {"void_known_pct", [](R r) { return r.truth ? fixed(100.0 * r.truth->void_known_fraction, 1) : "-"; }},
       {"target_seen", [](R r) { return r.truth ? (r.truth->target_seen ? "yes" : "no") : "-"; }},
       {"revealed", [](R r) { return r.revealed ? std::to_string(*r.revealed) : "-"; }},
       {"u_in_solid", [](R r) { return r.truth ? std::to_string(r.truth->u_in_solid) : "-"; }},
@@ -73,6 +74,7 @@ Json row_json(const session::ViewRow& r, bool timing) {
   j["next_angle_deg"] = or_null(r.next_deg);
   if (r.truth) {
     j["known_fraction"] = r.truth->known_fraction;
+    j["void_known_fraction"] = r.truth->void_known_fraction;
     j["target_cells_seen"] = r.truth->target_cells;
     j["target_seen"] = r.truth->target_seen;
     j["void_cells_in_solid"] = r.truth->u_in_solid;
@@ -135,6 +137,7 @@ Json explore_results_json(const std::string& dir, const session::ExploreResult& 
           {"end", result.end},
           {"utility_exhausted", result.utility_exhausted},
           {"observable_cells", score.observable_cells()},
+          {"observable_void_cells", score.observable_void_cells()},
           {"observable_target_cells", target ? Json(*target) : Json(nullptr)},
           {"rows", rows_json(rows, timing)}};
 }

@@ -32,21 +32,55 @@ void restrict_to_arm(const nbv::Reach& reach, const sim::GroundTruth& gt, const 
 
 }  // namespace
 
+bool usable_start(const sim::RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
+                  const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
+                  const Eigen::AlignedBox3d& S, std::uint64_t seed) {
+  Eigen::Isometry3d T_executed;  // where the arm really puts the sensor (FK of its IK solution)
+  try {
+    T_executed = start_configuration(reach, T_world_sensor, seed).first;
+  } catch (const Error&) {
+    return false;
+  }
+  for (const Eigen::Isometry3d& T : {T_world_sensor, T_executed}) {
+    const Eigen::Vector3d eye = T.translation();
+    if (sim::inside_solid(caster, eye.cast<float>())) return false;
+    bool measures_S = false;
+    for (const Eigen::Vector3d& ray : viewpoints::ray_fan(camera.intrinsics, 20, 15)) {  // depth 1 along z
+      const Eigen::Vector3d d_world = T.linear() * ray;
+      const sim::Hit hit = caster.cast(eye.cast<float>(), d_world.cast<float>(), 0.0f, float(camera.depth_max_m));
+      measures_S = hit.hit() && hit.distance >= camera.depth_min_m && S.contains(eye + double(hit.distance) * d_world);
+      if (measures_S) break;
+    }
+    if (!measures_S) return false;
+  }
+  return true;
+}
+
 SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, const Eigen::AlignedBox3d& S,
-                               const Eigen::Isometry3d& T_world_sensor_start, const std::optional<nbv::Reach>& reach,
-                               const io::DepthCamera& camera, std::uint64_t seed, unsigned threads,
+                               const std::optional<Eigen::Isometry3d>& T_world_sensor_start,
+                               const Eigen::Isometry3d& T_world_base, const Eigen::Vector3d& look_at,
+                               const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
+                               std::uint64_t seed, unsigned threads,
                                const std::function<void(const std::string&)>& progress)
     : S_(S), caster_(sim::make_ray_caster(scene.mesh)) {
-  const Eigen::Vector3d eye = T_world_sensor_start.translation();
+  if (T_world_sensor_start) {
+    start_ = *T_world_sensor_start;
+  } else {
+    progress("the first view");
+    start_ = default_start(reach, T_world_base, S, look_at, [&](const Eigen::Isometry3d& T) {
+      return usable_start(*caster_, T, reach, camera, S, seed);
+    });
+  }
+  const Eigen::Vector3d eye = start_.translation();
   if (sim::inside_solid(*caster_, eye.cast<float>()))
     throw Error("fvx explore: the start pose " + point_text(eye) + " is inside an obstacle of the scene");
-  start_configuration(reach, T_world_sensor_start, seed);  // Error when the arm cannot take it
+  start_configuration(reach, start_, seed);  // Error when the arm cannot take it
   progress("ground truth of the search space");
   gt_ = std::make_unique<sim::GroundTruth>(scene.mesh, *caster_, resolution_m,
                                            sim::exploration_region(S, sensor_positions(eye, reach)));
-  std::optional<Eigen::AlignedBox3d> target;
-  if (scene.info.target) target = scene.info.target->box;
-  score_ = std::make_unique<sim::ExplorationScore>(*gt_, S, target);
+  std::optional<Eigen::AlignedBox3d> target_box;
+  if (scene.info.target) target_box = scene.info.target->box;
+  score_ = std::make_unique<sim::ExplorationScore>(*gt_, S, target_box);
   if (reach) {
     progress("the space the arm can observe at all (ground truth)");
     restrict_to_arm(*reach, *gt_, camera, threads, *score_);
@@ -67,6 +101,7 @@ ViewRow SimulatedWorld::row_of(const ViewRecord& v, const map::OccupancyMap& map
   ViewRow row = session::row_of(v, map, S_);
   TruthColumns truth;
   truth.known_fraction = score_->known_fraction(map);
+  truth.void_known_fraction = score_->void_known_fraction(map);
   truth.target_cells = score_->target_cells_seen(map);
   truth.target_seen = truth.target_cells >= sim::ExplorationScore::kTargetCellsSeen;
   if (v.chosen) truth.u_in_solid = gt_->solid_among(v.step.nbv.views[*v.chosen].seen_void_cells);

@@ -1,6 +1,7 @@
 #include "fvx/sim/builtin_scenes.hpp"
 
 #include "fvx/core/error.hpp"
+#include "fvx/sim/scene_suite.hpp"
 
 namespace fvx::sim {
 namespace {
@@ -186,6 +187,24 @@ Mesh hollow_box(const Eigen::AlignedBox3f& outer, float wall_m, const Face (&fac
   return m;
 }
 
+namespace {
+
+std::string names_text() {
+  std::string text;
+  for (const std::string& n : builtin_scene_names()) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+int parse_suite_number(const std::string& name) {
+  const std::string digits = name.substr(6);
+  if (digits.empty() || digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string::npos ||
+      std::stoi(digits) < 1)
+    throw UsageError("'" + name + "' is not a built-in scene: suite/N takes N from 1 to 999999");
+  return std::stoi(digits);
+}
+
+}  // namespace
+
 std::vector<std::string> builtin_scene_names() {
   return {"closed-box", "room", "crates", "paper-setting-1", "paper-setting-2"};
 }
@@ -197,7 +216,8 @@ Scene builtin_scene(const std::string& name) {
   else if (name == "crates") s = crates();
   else if (name == "paper-setting-1") s = paper_setting_1();
   else if (name == "paper-setting-2") s = paper_setting_2();
-  else throw UsageError("'" + name + "' is not a built-in scene");
+  else if (name.rfind("suite/", 0) == 0) return suite_scene(parse_suite_number(name));
+  else throw UsageError("'" + name + "' is not a built-in scene (" + names_text() + ", or suite/N)");
   s.mesh_path = "builtin:" + name;
   return s;
 }

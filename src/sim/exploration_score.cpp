@@ -6,8 +6,34 @@
 #include <thread>
 
 #include "fvx/map/dense_grid.hpp"
+#include "fvx/voids/voids.hpp"
 
 namespace fvx::sim {
+namespace {
+
+/// The convex hull of the solid cells' centres in S: per column only the lowest and highest
+/// (the others lie between them, as voids::void_cells builds it).
+voids::Hull hull_of_surfaces(const GroundTruth& gt, const Eigen::AlignedBox3d& S) {
+  const Eigen::Vector3i n = gt.size();
+  std::vector<Eigen::Vector3d> extremes;
+  for (int y = 0; y < n.y(); ++y)
+    for (int x = 0; x < n.x(); ++x) {
+      std::optional<Eigen::Vector3d> lowest, highest;
+      for (int z = 0; z < n.z(); ++z) {
+        const Eigen::Vector3i cell = gt.first_cell() + Eigen::Vector3i(x, y, z);
+        const Eigen::Vector3d p = gt.center_of(cell);
+        if (!gt.solid(cell) || !S.contains(p)) continue;
+        if (!lowest) lowest = p;
+        highest = p;
+      }
+      if (!lowest) continue;
+      extremes.push_back(*lowest);
+      if (*highest != *lowest) extremes.push_back(*highest);
+    }
+  return voids::convex_hull(extremes);
+}
+
+}  // namespace
 
 ExplorationScore::ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBox3d& search_space_m,
                                    std::optional<Eigen::AlignedBox3d> target_m)
@@ -39,12 +65,19 @@ ExplorationScore::ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBo
         queue.push_back(m);
       }
   }
+  const voids::Hull hull = hull_of_surfaces(gt, search_space_m);
   for (int z = 0; z < n.z(); ++z)
     for (int y = 0; y < n.y(); ++y)
       for (int x = 0; x < n.x(); ++x) {
         const Eigen::Vector3d p = gt.center_of(gt.first_cell() + Eigen::Vector3i(x, y, z));
-        if (reached[index({x, y, z})] && search_space_m.contains(p)) observable_.push_back(p);
+        if (!reached[index({x, y, z})] || !search_space_m.contains(p)) continue;
+        observable_.push_back(p);
+        in_hull_.push_back(!hull.empty() && hull.contains(p));
       }
+}
+
+std::size_t ExplorationScore::observable_void_cells() const {
+  return std::size_t(std::count(in_hull_.begin(), in_hull_.end(), true));
 }
 
 void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vector<Eigen::Isometry3d>& T_world_sensor,
@@ -85,13 +118,18 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
   work(0);
   for (auto& t : pool) t.join();
   std::vector<Eigen::Vector3d> kept;
-  for (const Eigen::Vector3d& p : observable_) {
-    const auto key = truth.key_of(p);
+  std::vector<bool> kept_in_hull;
+  for (std::size_t c = 0; c < observable_.size(); ++c) {
+    const auto key = truth.key_of(observable_[c]);
     if (!key || !grid.contains(*key)) continue;
     const std::size_t i = grid.index(*key);
-    if (std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return (r[i] & 1) != 0; })) kept.push_back(p);
+    if (std::any_of(revealed.begin(), revealed.end(), [&](const auto& r) { return (r[i] & 1) != 0; })) {
+      kept.push_back(observable_[c]);
+      kept_in_hull.push_back(in_hull_[c]);
+    }
   }
   observable_ = std::move(kept);
+  in_hull_ = std::move(kept_in_hull);
   observable_target_cells_ = 0;
   if (target_m_) {
     Eigen::AlignedBox3d above_floor = *target_m_;
@@ -111,6 +149,17 @@ double ExplorationScore::known_fraction(const map::OccupancyMap& map) const {
     known += key && map.state(*key) != map::VoxelState::Unknown;
   }
   return double(known) / double(observable_.size());
+}
+
+double ExplorationScore::void_known_fraction(const map::OccupancyMap& map) const {
+  std::size_t all = 0, known = 0;
+  for (std::size_t c = 0; c < observable_.size(); ++c) {
+    if (!in_hull_[c]) continue;
+    ++all;
+    const auto key = map.key_of(observable_[c]);
+    known += key && map.state(*key) != map::VoxelState::Unknown;
+  }
+  return all ? double(known) / double(all) : 1.0;
 }
 
 std::size_t ExplorationScore::target_cells_seen(const map::OccupancyMap& map) const {

@@ -64,7 +64,7 @@ SceneInfo read_scene_info(const std::string& path) {
   } catch (const json::exception& e) {
     throw FileError(path, std::string("not valid JSON: ") + e.what());
   }
-  only_keys(j, {"name", "search_space", "target", "containers"}, path, "the scene file");
+  only_keys(j, {"name", "search_space", "target", "containers", "bases"}, path, "the scene file");
   SceneInfo info;
   if (j.contains("name")) info.name = j.at("name").is_string() ? j.at("name").get<std::string>() : "";
   if (j.contains("search_space")) {
@@ -76,6 +76,19 @@ SceneInfo read_scene_info(const std::string& path) {
     if (!j.at("containers").is_array()) throw FileError(path, "containers must be a list");
     for (std::size_t i = 0; i < j.at("containers").size(); ++i)
       info.containers.push_back(named_box(j.at("containers")[i], path, "containers[" + std::to_string(i) + "]"));
+  }
+  if (j.contains("bases")) {
+    if (!j.at("bases").is_array()) throw FileError(path, "bases must be a list");
+    for (const json& b : j.at("bases")) {
+      std::array<double, 6> pose{};
+      if (!b.is_array() || b.size() != 6) throw FileError(path, "each of bases must be [x, y, z, roll, pitch, yaw]");
+      for (std::size_t i = 0; i < 6; ++i) {
+        if (!b[i].is_number() || !std::isfinite(b[i].get<double>()))
+          throw FileError(path, "each of bases must be [x, y, z, roll, pitch, yaw]: finite numbers");
+        pose[i] = b[i].get<double>();
+      }
+      info.bases.push_back(pose);
+    }
   }
   return info;
 }
@@ -93,6 +106,10 @@ void write_scene_info(const std::string& path, const SceneInfo& info) {
   if (info.target) j["target"] = named(*info.target);
   j["containers"] = ordered::array();
   for (const auto& c : info.containers) j["containers"].push_back(named(c));
+  if (!info.bases.empty()) {
+    j["bases"] = ordered::array();
+    for (const auto& b : info.bases) j["bases"].push_back({um(b[0]), um(b[1]), um(b[2]), b[3], b[4], b[5]});
+  }
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 

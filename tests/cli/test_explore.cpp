@@ -63,13 +63,16 @@ TEST(CliExplore, WritesTheTableAndASessionThatReadsBack) {
   const RunResult csv = run_fvx(dir, "explore" + kScene + arm() + " --max-views 3 --format csv -o session2");
   ASSERT_EQ(csv.status, 0) << csv.err;
   EXPECT_EQ(csv.out.substr(0, csv.out.find('\n')),
-            "view,integration_s,search_s,void_cells,utility_dm3,map_void_cells,known_pct,target_seen,revealed,u_in_solid");
+            "view,integration_s,search_s,void_cells,utility_dm3,map_void_cells,void_known_pct,known_pct,target_seen,"
+            "revealed,u_in_solid");
   EXPECT_EQ(line_count(csv.out), 4u);
   const RunResult js = run_fvx(dir, "explore" + kScene + arm() + " --max-views 3 --format json -o session3");
   ASSERT_EQ(js.status, 0) << js.err;
   const json j = json::parse(js.out);
   ASSERT_EQ(j["results"]["rows"].size(), 3u);
   EXPECT_GT(j["results"]["observable_cells"].get<int>(), 1000);
+  EXPECT_GT(j["results"]["observable_void_cells"].get<int>(), 100);
+  EXPECT_LT(j["results"]["observable_void_cells"].get<int>(), j["results"]["observable_cells"].get<int>());
   const session::Manifest m3 = session::read_manifest(dir / "session3");
   for (std::size_t i = 0; i < 3; ++i)
     EXPECT_TRUE(m3.views[i].T_world_sensor_prior.isApprox(m.views[i].T_world_sensor_prior, 1e-12)) << "view " << i;
@@ -77,6 +80,8 @@ TEST(CliExplore, WritesTheTableAndASessionThatReadsBack) {
     EXPECT_NEAR(row["utility_dm3"].get<double>(), row["void_cells"].get<double>() * 0.015625, 1e-9);
     EXPECT_GE(row["known_fraction"].get<double>(), 0.0);
     EXPECT_LE(row["known_fraction"].get<double>(), 1.0);
+    EXPECT_GE(row["void_known_fraction"].get<double>(), 0.0);
+    EXPECT_LE(row["void_known_fraction"].get<double>(), 1.0);
     EXPECT_LE(row["void_cells_in_solid"].get<int>(), row["void_cells"].get<int>());
     EXPECT_GE(row["free_cells_in_solid"].get<int>(), 0);
     EXPECT_FALSE(row.contains("timing_s"));

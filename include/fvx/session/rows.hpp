@@ -16,6 +16,7 @@ namespace fvx::session {
 /// Simulation only: the view judged against the scene's ground truth (sim::ExplorationScore).
 struct TruthColumns {
   double known_fraction = 0;       ///< of the observable empty space of S
+  double void_known_fraction = 0;  ///< of the observable void cells (sim::ExplorationScore)
   std::size_t target_cells = 0;    ///< target cells the map holds as occupied
   bool target_seen = false;        ///< at least sim::ExplorationScore::kTargetCellsSeen of them
   std::size_t u_in_solid = 0;      ///< of void_cells, cells inside material

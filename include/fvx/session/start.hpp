@@ -12,13 +12,21 @@
 
 namespace fvx::session {
 
-/// The default first view, looking at `target`. With an arm: of the capability map's
-/// reachable poses outside the search space `S` that aim within 10° of `target`, the
-/// farthest from it (the widest view of the scene, as a robot's first look would be); without
-/// any, the best-aimed pose; Error when the map reaches no pose outside S. Without an arm:
-/// from (−0.15, 0, 0.95) m in the base frame T_world_base.
+/// The first views a robot would try, best first, all looking at `target`. With an arm: the
+/// capability map's reachable poses outside the search space `S`; those that aim within 10°
+/// of `target` first, farthest from it first (the widest view of the scene, as a robot's
+/// first look would be), then the others, best aimed first. Error when the map reaches no
+/// pose outside S. Without an arm: one pose, from (−0.15, 0, 0.95) m in the base frame
+/// T_world_base.
+std::vector<Eigen::Isometry3d> start_candidates(const std::optional<nbv::Reach>& reach,
+                                                const Eigen::Isometry3d& T_world_base, const Eigen::AlignedBox3d& S,
+                                                const Eigen::Vector3d& target);
+
+/// The default first view: the first of start_candidates that `usable` accepts (every one
+/// when `usable` is empty); Error naming how many were tried when none is.
 Eigen::Isometry3d default_start(const std::optional<nbv::Reach>& reach, const Eigen::Isometry3d& T_world_base,
-                                const Eigen::AlignedBox3d& S, const Eigen::Vector3d& target);
+                                const Eigen::AlignedBox3d& S, const Eigen::Vector3d& target,
+                                const std::function<bool(const Eigen::Isometry3d&)>& usable = {});
 
 /// Every pose of the arm's capability map, world frame: at each voxel centre that is not
 /// `blocked`, the optical axis along each direction the voxel reaches (roll 0).

@@ -24,6 +24,10 @@ class ExplorationScore {
   /// the ground truth's region) to the region's border — the air a sensor outside can reach
   /// with a ray. A sealed cavity is not observable; neither is a cell that only a sensor
   /// inside the search space could see, which no planner is denied here.
+  /// Observable void cells: the observable cells inside the convex hull of the ground
+  /// truth's solid cell centres in S — the voids' own rule (voids::void_cells: unknown cells
+  /// inside the hull of the occupied cells) applied to the complete scene: what a map that
+  /// knew every surface of S and nothing else would call void.
   ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBox3d& search_space_m,
                    std::optional<Eigen::AlignedBox3d> target_m);
 
@@ -37,17 +41,23 @@ class ExplorationScore {
                          unsigned threads = 0);
 
   std::size_t observable_cells() const { return observable_.size(); }
+  /// Observable cells inside the hull of the scene's surfaces in S (see the constructor).
+  std::size_t observable_void_cells() const;
   /// After restrict_to_views: the target's surface cells (in its box above its lowest cell)
   /// that some of those poses would measure. 0: no pose of the arm can see the target.
   std::optional<std::size_t> observable_target_cells() const { return observable_target_cells_; }
   /// Observable cells the map knows (free or occupied), as a share of all observable cells.
   double known_fraction(const map::OccupancyMap& map) const;
+  /// Observable void cells the map knows, as a share of all of them (1 when there are none):
+  /// the exploration's headline, since the paper's method looks for exactly those cells.
+  double void_known_fraction(const map::OccupancyMap& map) const;
   /// Occupied map cells in the target box above its lowest cell (0 without a target).
   std::size_t target_cells_seen(const map::OccupancyMap& map) const;
   bool target_seen(const map::OccupancyMap& map) const { return target_cells_seen(map) >= kTargetCellsSeen; }
 
  private:
   std::vector<Eigen::Vector3d> observable_;  ///< cell centres, world frame
+  std::vector<bool> in_hull_;                ///< per observable cell: inside the scene's hull
   std::optional<Eigen::AlignedBox3d> target_m_;
   std::optional<std::size_t> observable_target_cells_;
 };

@@ -6,11 +6,15 @@
 ///     {"name": "closed box",
 ///      "search_space": {"min": [x, y, z], "max": [x, y, z]},
 ///      "target": {"name": "victim", "min": [...], "max": [...]},
-///      "containers": [{"name": "box A", "min": [...], "max": [...]}]}
+///      "containers": [{"name": "box A", "min": [...], "max": [...]}],
+///      "bases": [[x, y, z, roll, pitch, yaw], ...]}
 ///
 /// All keys are optional; boxes are axis-aligned, metres, world frame. `containers` are the
-/// interiors of boxes whose free volume ground truth reports.
+/// interiors of boxes whose free volume ground truth reports. `bases` are where an arm's base
+/// may stand (T_world_base, metres and degrees, as --base takes it); the first is the one
+/// `fvx explore` uses when --base is not given.
 #include <Eigen/Geometry>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +33,7 @@ struct SceneInfo {
   std::optional<Eigen::AlignedBox3d> search_space;
   std::optional<NamedBox> target;
   std::vector<NamedBox> containers;
+  std::vector<std::array<double, 6>> bases;  ///< x, y, z (m), roll, pitch, yaw (degrees)
 };
 
 struct Scene {

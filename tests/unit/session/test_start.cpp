@@ -6,7 +6,11 @@
 #include <cmath>
 
 #include "fvx/core/error.hpp"
+#include "fvx/session/session.hpp"
+#include "fvx/session/simulated_world.hpp"
 #include "fvx/session/start.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/ground_truth.hpp"
 #include "test_support.hpp"
 
@@ -46,6 +50,44 @@ TEST(Start, WithAnArmTheFarthestPoseAimedAtTheTargetOutsideTheSearchSpace) {
   }
   ASSERT_GT(aimed_poses, 0u);
   EXPECT_NEAR((target - eye).norm(), farthest, 1e-9);
+}
+
+// Oracle: IK itself (start_configuration) and a full rendered frame from the pose the arm
+// really reaches, which must measure the search space.
+TEST(Start, FromEverySideOfASceneTheArmTakesTheDefaultStartAndItSeesTheSearchSpace) {
+  const sim::Scene scene = sim::builtin_scene("paper-setting-1");
+  const auto caster = sim::make_ray_caster(scene.mesh);
+  const Eigen::AlignedBox3d S = *scene.info.search_space;
+  const Eigen::Vector3d look_at = S.center() - Eigen::Vector3d(0, 0, 0.1);
+  const capmap::CapabilityMap cm = capmap::CapabilityMap::load(test::source("data/arms/fvx-arm.fcm"));
+  const capmap::Arm arm =
+      capmap::Arm::from_urdf(test::source("data/arms/fvx-arm.urdf"), capmap::arm_config_of(cm.header()));
+  const io::DepthCamera camera;  // Kinect v1
+  // In front of the scene, behind it (against the lab's far wall) and on both sides, facing it.
+  const std::pair<Eigen::Vector3d, double> bases[] = {
+      {{0.2, 0.0, 0.0}, 0.0}, {{1.9, 0.15, 0.0}, 180.0}, {{0.8, -1.1, 0.0}, 90.0}, {{0.8, 1.4, 0.0}, -90.0}};
+  int first_candidate_unusable = 0;
+  for (const auto& [position, yaw_deg] : bases) {
+    nbv::Reach reach{&cm, Eigen::Isometry3d::Identity(), &arm, {}};
+    reach.T_world_base.translation() = position;
+    reach.T_world_base.linear() = Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix();
+    reach.ik.position_tolerance_m = cm.header().position_tolerance_m;
+    reach.ik.angle_tolerance_rad = cm.header().angle_tolerance_rad;
+    auto usable = [&](const Eigen::Isometry3d& T) { return usable_start(*caster, T, reach, camera, S, 1); };
+    SCOPED_TRACE("base at " + std::to_string(position.x()) + ", " + std::to_string(position.y()));
+    const Eigen::Isometry3d T = default_start(reach, reach.T_world_base, S, look_at, usable);
+    const auto [T_real, joints] = start_configuration(reach, T, 1);
+    EXPECT_EQ(joints.size(), Eigen::Index(arm.dof()));
+    EXPECT_FALSE(sim::inside_solid(*caster, T_real.translation().cast<float>()));
+    const sim::Frame frame = sim::render(*caster, T_real, sim::SensorConfig::of(camera, 1, 0));
+    std::size_t in_S = 0;
+    for (const Eigen::Vector3f& p : frame.points_sensor)
+      in_S += p.allFinite() && S.contains(T_real * p.cast<double>());
+    EXPECT_GT(in_S, 100u);
+    first_candidate_unusable += !usable(start_candidates(reach, reach.T_world_base, S, look_at).front());
+  }
+  // What the checks are for: from some side the best-ranked pose fails IK or sees nothing.
+  EXPECT_GE(first_candidate_unusable, 1);
 }
 
 TEST(Start, WithoutAnArmAboveAndBehindTheBaseLookingAtTheTarget) {

@@ -40,6 +40,62 @@ TEST(ExplorationScore, SealedAirIsNotObservable) {
   EXPECT_FALSE(score.target_seen(map::OccupancyMap(0.025)));
 }
 
+// The observable void cells: inside the convex hull of the solid cells in S. Here S holds an
+// open crate and, beyond a gap, a low block, so the hull is a prism along y whose x-z section
+// is known: the solids' bottom layer, the crate's near and top faces, the block's far face,
+// and the slope from the crate's far top edge down to the block's far top edge. (The floor's
+// surface at z = 0 belongs to the cell below, outside S.) Brute force: every free cell tested
+// against that section.
+TEST(ExplorationScore, ObservableVoidCellsAreTheFreeCellsInsideTheHullOfTheSurfaces) {
+  Scene scene;
+  scene.mesh.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(-0.5f, -1.0f, -0.05f), Eigen::Vector3f(2.0f, 1.0f, 0.0f)));
+  Face faces[6];
+  faces[5] = {Face::Open};
+  scene.mesh.append(hollow_box(Eigen::AlignedBox3f(Eigen::Vector3f(0.5f, -0.2f, 0.0f), Eigen::Vector3f(0.9f, 0.2f, 0.3f)),
+                               0.02f, faces));
+  scene.mesh.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(1.0f, -0.2f, 0.0f), Eigen::Vector3f(1.1f, 0.2f, 0.1f)));
+  const auto caster = make_ray_caster(scene.mesh);
+  const Eigen::AlignedBox3d S(Eigen::Vector3d(0.5, -0.2, 0.0), Eigen::Vector3d(1.1, 0.2, 0.3));
+  const GroundTruth gt(scene.mesh, *caster, 0.025,
+                       Eigen::AlignedBox3d(S.min() - Eigen::Vector3d::Constant(0.25), S.max() + Eigen::Vector3d::Constant(0.25)));
+  auto in_section = [](const Eigen::Vector3d& p) {
+    const double e = 1e-6, top = 0.2875 - (p.x() - 0.8875);  // from (0.8875, 0.2875) to (1.0875, 0.0875)
+    return p.x() >= 0.5125 - e && p.x() <= 1.0875 + e && p.y() >= -0.1875 - e && p.y() <= 0.1875 + e &&
+           p.z() >= 0.0125 - e && p.z() <= std::min(0.2875, top) + e;
+  };
+  std::size_t expected = 0, inside_crate = 0;
+  for (int z = 0; z < gt.size().z(); ++z)
+    for (int y = 0; y < gt.size().y(); ++y)
+      for (int x = 0; x < gt.size().x(); ++x) {
+        const Eigen::Vector3i cell = gt.first_cell() + Eigen::Vector3i(x, y, z);
+        const Eigen::Vector3d p = gt.center_of(cell);
+        if (gt.solid(cell) || !S.contains(p) || !in_section(p)) continue;
+        ++expected;  // every free cell here is open to the air: the crate has no lid
+        inside_crate += p.x() < 0.88;
+      }
+  const ExplorationScore score(gt, S, std::nullopt);
+  ASSERT_GT(inside_crate, 1000u);
+  ASSERT_GT(expected, inside_crate + 200);  // the gap under the slope holds void air too
+  EXPECT_EQ(score.observable_void_cells(), expected);
+  EXPECT_LT(score.observable_void_cells(), score.observable_cells());  // the air above the slope is not void
+  // The share known: nothing, everything, and a map that knows only the crate's upper half.
+  EXPECT_DOUBLE_EQ(score.void_known_fraction(map::OccupancyMap(0.025)), 0.0);
+  const map::OccupancyMap truth = gt.to_map();
+  EXPECT_DOUBLE_EQ(score.void_known_fraction(truth), 1.0);
+  map::OccupancyMap half(0.025);
+  std::size_t upper = 0;
+  for (int z = 0; z < gt.size().z(); ++z)
+    for (int y = 0; y < gt.size().y(); ++y)
+      for (int x = 0; x < gt.size().x(); ++x) {
+        const Eigen::Vector3i cell = gt.first_cell() + Eigen::Vector3i(x, y, z);
+        const Eigen::Vector3d p = gt.center_of(cell);
+        if (gt.solid(cell) || !S.contains(p) || !in_section(p) || p.z() < 0.15) continue;
+        half.set_state(*half.key_of(p), map::VoxelState::Free);
+        ++upper;
+      }
+  EXPECT_NEAR(score.void_known_fraction(half), double(upper) / double(expected), 1e-12);
+}
+
 TEST(ExplorationScore, ViewsKeepWhatTheyReveal) {
   const Crates c;
   ExplorationScore score(c.gt, c.S, c.scene.info.target->box);
@@ -50,8 +106,11 @@ TEST(ExplorationScore, ViewsKeepWhatTheyReveal) {
   above.translation() = Eigen::Vector3d(0.67, -0.5, 1.1);
   above.linear() = viewpoints::look_along(Eigen::Vector3d(0, 0, -1), 0.0);
   const auto rays = viewpoints::ray_fan(io::Intrinsics{}, 40, 30);
+  const std::size_t all_void = score.observable_void_cells();
   score.restrict_to_views(c.gt, {above}, rays, 0.5, 4.0);
   EXPECT_LT(score.observable_cells(), all);
+  EXPECT_LT(score.observable_void_cells(), all_void);
+  EXPECT_GT(score.observable_void_cells(), 50u);  // the open crate's inside, seen from above
   EXPECT_GT(score.observable_cells(), 100u);
   ASSERT_TRUE(score.observable_target_cells().has_value());
   // The victim (0.8…0.9, −0.1…0) lies in the crate with the side opening: this pose does
