@@ -8,7 +8,9 @@
 #   --scenes    numbers and ranges of the scene family builtin:suite/N ("1-24", the default
 #               suite), or any scene fvx explore takes (builtin:NAME, a mesh); comma or space
 #               separated
-#   --planners  default "frontier-void frontier random exhaustive"
+#   --planners  default "frontier-void frontier random exhaustive"; an item LABEL=STRATEGY,FLAG...
+#               runs a variant under its own label, e.g. "fv-far=frontier-void,--far-voids-only"
+#               (labels without "_"): before and after a change, in the same run
 #   --seeds     default "1"; ranges allowed ("1-3")
 #   --max-views default 15
 #   --jobs      runs at the same time (default: the number of cores); each search gets
@@ -65,17 +67,25 @@ tasks="$out/tasks.txt"
 : > "$tasks"
 for s in $(expand "$scenes"); do
   scene="$(scene_arg "$s")"
-  for planner in $planners; do
+  for item in $planners; do
+    planner="${item%%=*}"
+    spec="${item#*=}"              # STRATEGY[,FLAG...]; the label itself when there is no "="
+    strategy="${spec%%,*}"
+    flags=""
+    [ "$spec" != "$strategy" ] && flags="${spec#*,}" && flags="${flags//,/ }"
+    [[ "$planner" =~ ^[A-Za-z0-9.+-]+$ ]] || { echo "evaluate-planners: planner label '$planner': letters, digits, . + - only" >&2; exit 2; }
     for seed in $(expand "$seeds"); do
       id="$(slug "$scene")_${planner}_$seed"
       [ -s "$out/runs/$id.json" ] && continue  # done in an earlier, interrupted evaluation
-      printf '%q explore %q --capmap data/arms/fvx-arm.fcm --arm data/arms/fvx-arm.urdf --strategy %q --seed %q --max-views %q --threads %q --timing --format json -o %q > %q 2> %q && mv %q %q\n' \
-        "$fvx" "$scene" "$planner" "$seed" "$max_views" "$threads" "$out/runs/$id.session" \
+      printf '%q explore %q --capmap data/arms/fvx-arm.fcm --arm data/arms/fvx-arm.urdf --strategy %q %s --seed %q --max-views %q --threads %q --timing --format json -o %q > %q 2> %q && mv %q %q\n' \
+        "$fvx" "$scene" "$strategy" "$flags" "$seed" "$max_views" "$threads" "$out/runs/$id.session" \
         "$out/runs/$id.json.tmp" "$out/runs/$id.log" "$out/runs/$id.json.tmp" "$out/runs/$id.json" >> "$tasks"
       rm -rf "${out:?}/runs/$id.session"
     done
   done
 done
+labels=""
+for item in $planners; do labels="$labels ${item%%=*}"; done
 total=$(wc -l < "$tasks")
 echo "evaluate-planners: $total runs to do, $jobs at a time, in $out/" >&2
 failed=0
@@ -107,9 +117,9 @@ for f in "$out"/runs/*.json; do
 done
 
 # Per planner. Views to 95 %: the median over runs, a run that never got there counting as
-# max-views + 1. AUC: the mean coverage over the views; "beats": the share of the runs whose
-# frontier-void AUC (same scene and seed) is higher.
-awk -F, -v max="$max_views" -v md="$out/summary.md" -v csv="$out/summary.csv" -v order="$planners" '
+# max-views + 1. AUC: the mean coverage over the views; the first planner's AUC is compared
+# with each other's on the same scene and seed: in how many it is higher.
+awk -F, -v max="$max_views" -v md="$out/summary.md" -v csv="$out/summary.csv" -v order="$labels" '
   function median(list, n,    a, i, j, t) {
     split(list, a, " "); n = length(a)
     for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }
@@ -124,25 +134,26 @@ awk -F, -v max="$max_views" -v md="$out/summary.md" -v csv="$out/summary.csv" -v
     if ($8 == "yes") { observable[p]++; seen[p] += $9 != "" }
   }
   END {
-    print "| planner | runs | views to 95 % of the void (median) | reached 95 % | ended with utility 0 | target seen where observable | mean AUC | frontier-void AUC higher | search s (median) |" > md
-    print "|---|---|---|---|---|---|---|---|---|" > md
-    print "planner,runs,views_to_95_median,reached_95,ended_utility_0,target_observable,target_seen,auc_mean,frontier_void_auc_higher,runs_compared,search_s_median" > csv
     n_order = split(order, ordered, " ")
+    ref = ordered[1]
+    print "| planner | runs | views to 95 % of the void (median) | reached 95 % | ended with utility 0 | target seen where observable | mean AUC | " ref " AUC higher | search s (median) |" > md
+    print "|---|---|---|---|---|---|---|---|---|" > md
+    print "planner,runs,views_to_95_median,reached_95,ended_utility_0,target_observable,target_seen,auc_mean,first_auc_higher,runs_compared,search_s_median" > csv
     for (i = 1; i <= n_order; i++) {
       p = ordered[i]
       if (!(p in planners)) continue
       higher = 0; compared = 0
-      for (k in keys) if ((p, k) in auc_of && ("frontier-void", k) in auc_of) { compared++; higher += auc_of["frontier-void", k] > auc_of[p, k] }
+      for (k in keys) if ((p, k) in auc_of && (ref, k) in auc_of) { compared++; higher += auc_of[ref, k] > auc_of[p, k] }
       m = median(views95[p]); m = m > max ? ">" max : m
       printf "| %s | %d | %s | %d/%d | %d/%d | %d/%d | %.3f | %s | %.3f |\n", p, runs[p], m, reached[p], runs[p], ended[p], runs[p],
-        seen[p], observable[p], auc[p] / runs[p], p == "frontier-void" ? "-" : higher "/" compared, median(search[p]) > md
+        seen[p], observable[p], auc[p] / runs[p], p == ref ? "-" : higher "/" compared, median(search[p]) > md
       printf "%s,%d,%s,%d,%d,%d,%d,%.4f,%d,%d,%.4f\n", p, runs[p], m, reached[p], ended[p], observable[p], seen[p], auc[p] / runs[p],
         higher, compared, median(search[p]) > csv
     }
   }' "$runs_csv"
 
 # Median and quartiles per planner and view, then the plot.
-awk -F, -v order="$planners" 'NR > 1 { v[$2, $4] = v[$2, $4] " " $5; planners[$2] = 1; if ($4 > n) n = $4 }
+awk -F, -v order="$labels" 'NR > 1 { v[$2, $4] = v[$2, $4] " " $5; planners[$2] = 1; if ($4 > n) n = $4 }
   function q(list, f,    a, k, i, j, t) {
     k = split(list, a, " ")
     for (i = 2; i <= k; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }

@@ -18,16 +18,21 @@ std::vector<Eigen::Vector3d> sensor_positions(const Eigen::Vector3d& start, cons
   return positions;
 }
 
-/// Observable = what some pose of the arm's capability map would reveal (coarse rays: the
-/// union over thousands of poses fills their gaps).
-void restrict_to_arm(const nbv::Reach& reach, const sim::GroundTruth& gt, const io::DepthCamera& camera,
-                     unsigned threads, sim::ExplorationScore& score) {
-  const std::vector<Eigen::Isometry3d> poses = capmap_view_poses(reach, [&](const Eigen::Vector3d& p) {
+/// Observable = what the first view or some pose of the arm's capability map would reveal
+/// (coarse rays: the union over thousands of poses fills their gaps; the target, whose cells
+/// such a fan misses, by the rays through its image).
+void restrict_to_arm(const nbv::Reach& reach, const Eigen::Isometry3d& T_start, const sim::GroundTruth& gt,
+                     const sim::RayCaster& caster, const io::DepthCamera& camera, unsigned threads,
+                     sim::ExplorationScore& score) {
+  std::vector<Eigen::Isometry3d> poses = capmap_view_poses(reach, [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3i cell = gt.cell_of(p);
     return gt.contains(cell) && gt.solid(cell);
   });
+  poses.push_back(T_start);
   score.restrict_to_views(gt, poses, viewpoints::ray_fan(camera.intrinsics, 20, 15), camera.depth_min_m,
                           camera.depth_max_m, threads);
+  score.restrict_target_to_views(caster, poses, camera.intrinsics, camera.depth_min_m, camera.depth_max_m,
+                                 gt.resolution_m(), threads);
 }
 
 }  // namespace
@@ -74,7 +79,7 @@ SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, con
   const Eigen::Vector3d eye = start_.translation();
   if (sim::inside_solid(*caster_, eye.cast<float>()))
     throw Error("fvx explore: the start pose " + point_text(eye) + " is inside an obstacle of the scene");
-  start_configuration(reach, start_, seed);  // Error when the arm cannot take it
+  const Eigen::Isometry3d T_start_reached = start_configuration(reach, start_, seed).first;  // Error when it cannot
   progress("ground truth of the search space");
   gt_ = std::make_unique<sim::GroundTruth>(scene.mesh, *caster_, resolution_m,
                                            sim::exploration_region(S, sensor_positions(eye, reach)));
@@ -83,7 +88,7 @@ SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, con
   score_ = std::make_unique<sim::ExplorationScore>(*gt_, S, target_box);
   if (reach) {
     progress("the space the arm can observe at all (ground truth)");
-    restrict_to_arm(*reach, *gt_, camera, threads, *score_);
+    restrict_to_arm(*reach, T_start_reached, *gt_, *caster_, camera, threads, *score_);
   }
 }
 

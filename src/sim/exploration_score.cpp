@@ -141,6 +141,66 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
   }
 }
 
+void ExplorationScore::restrict_target_to_views(const RayCaster& caster,
+                                                const std::vector<Eigen::Isometry3d>& T_world_sensor,
+                                                const io::Intrinsics& K, double depth_min_m, double depth_max_m,
+                                                double resolution_m, unsigned threads) {
+  if (!target_m_) return;
+  const double R = resolution_m;
+  Eigen::AlignedBox3d above_floor = *target_m_;
+  above_floor.min().z() += R;
+  // The cells a measurement can mark: those whose centres lie in the box, by key.
+  const Eigen::Vector3i first = (above_floor.min().array() / R).floor().cast<int>();
+  const Eigen::Vector3i size = (above_floor.max().array() / R).floor().cast<int>() - first.array() + 1;
+  auto slot = [&](const Eigen::Vector3i& k) { return (std::size_t(k.z()) * size.y() + k.y()) * size.x() + k.x(); };
+  const unsigned n = std::max(1u, threads ? threads : std::thread::hardware_concurrency());
+  std::vector<std::vector<std::uint8_t>> measured(n, std::vector<std::uint8_t>(std::size_t(size.prod()), 0));
+  std::atomic<std::size_t> next{0};
+  auto work = [&](unsigned t) {
+    for (std::size_t p = next++; p < T_world_sensor.size(); p = next++) {
+      const Eigen::Isometry3d& T = T_world_sensor[p];
+      const Eigen::Isometry3d T_sensor_world = T.inverse();
+      // The pixel rectangle the target box covers (all of the image when it reaches behind).
+      double u0 = 0, u1 = K.width - 1, v0 = 0, v1 = K.height - 1;
+      bool in_front = true, behind = true;
+      Eigen::AlignedBox2d rect;
+      for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d q = T_sensor_world * target_m_->corner(Eigen::AlignedBox3d::CornerType(c));
+        in_front = in_front && q.z() > 1e-6;
+        behind = behind && q.z() <= 1e-6;
+        if (q.z() > 1e-6) rect.extend(Eigen::Vector2d(K.fx * q.x() / q.z() + K.cx, K.fy * q.y() / q.z() + K.cy));
+      }
+      if (behind) continue;
+      if (in_front) {
+        u0 = std::max(u0, std::floor(rect.min().x())), u1 = std::min(u1, std::ceil(rect.max().x()));
+        v0 = std::max(v0, std::floor(rect.min().y())), v1 = std::min(v1, std::ceil(rect.max().y()));
+      }
+      if (u0 > u1 || v0 > v1) continue;
+      const double du = std::max(1.0, (u1 - u0) / 15.0), dv = std::max(1.0, (v1 - v0) / 15.0);
+      for (double v = v0; v <= v1; v += dv)
+        for (double u = u0; u <= u1; u += du) {
+          // The renderer's rule (sim::render): the first surface, at a depth within the limits,
+          // marks the cell that holds the measured point, as the map's integration does.
+          const Eigen::Vector3d ray = T.linear() * Eigen::Vector3d((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
+          const Hit hit = caster.cast(T.translation().cast<float>(), ray.cast<float>(), 0.0f, float(depth_max_m));
+          if (!hit.hit() || hit.distance < depth_min_m) continue;
+          const Eigen::Vector3d point = T.translation() + double(hit.distance) * ray;
+          const Eigen::Vector3i key = (point.array() / R).floor().cast<int>();
+          const Eigen::Vector3d centre = (key.cast<double>().array() + 0.5) * R;
+          if (above_floor.contains(centre)) measured[t][slot(key - first)] = 1;
+        }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& t : pool) t.join();
+  std::size_t cells = 0;
+  for (std::size_t i = 0; i < measured[0].size(); ++i)
+    cells += std::any_of(measured.begin(), measured.end(), [&](const auto& m) { return m[i] != 0; });
+  observable_target_cells_ = std::max(observable_target_cells_.value_or(0), cells);
+}
+
 double ExplorationScore::known_fraction(const map::OccupancyMap& map) const {
   if (observable_.empty()) return 1.0;
   std::size_t known = 0;

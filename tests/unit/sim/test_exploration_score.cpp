@@ -4,7 +4,11 @@
 // ground truth tells which predicted void cells and which free map cells lie inside material.
 #include <gtest/gtest.h>
 
+#include <set>
+#include <tuple>
+
 #include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/exploration_score.hpp"
 #include "fvx/viewpoints/fov.hpp"
 
@@ -94,6 +98,50 @@ TEST(ExplorationScore, ObservableVoidCellsAreTheFreeCellsInsideTheHullOfTheSurfa
         ++upper;
       }
   EXPECT_NEAR(score.void_known_fraction(half), double(upper) / double(expected), 1e-12);
+}
+
+// The target seen through the full image: from 3.4 m a 10 cm block covers about 15 pixels, so
+// every pixel of its image is cast. Oracle: the renderer's full frame from the same pose,
+// the cells holding its points inside the target box (above its lowest cell).
+TEST(ExplorationScore, TheTargetIsJudgedByTheRaysThroughItsImage) {
+  Scene scene;
+  scene.mesh.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(-1.0f, -1.0f, -0.05f), Eigen::Vector3f(5.0f, 1.0f, 0.0f)));
+  const Eigen::AlignedBox3f block(Eigen::Vector3f(3.0f, -0.05f, 0.0f), Eigen::Vector3f(3.1f, 0.05f, 0.1f));
+  scene.mesh.add_box(block);
+  const auto caster = make_ray_caster(scene.mesh);
+  const Eigen::AlignedBox3d S(Eigen::Vector3d(2.5, -0.5, 0.0), Eigen::Vector3d(3.5, 0.5, 0.5));
+  const GroundTruth gt(scene.mesh, *caster, 0.025, Eigen::AlignedBox3d(S.min() - Eigen::Vector3d(3, 1, 0.25), S.max() + Eigen::Vector3d::Constant(0.25)));
+  const Eigen::AlignedBox3d target(block.min().cast<double>(), block.max().cast<double>());
+  Eigen::Isometry3d eye = Eigen::Isometry3d::Identity();
+  eye.translation() = Eigen::Vector3d(-0.35, 0.0, 0.9);
+  eye.linear() = viewpoints::look_along(target.center() - eye.translation(), 0.0);
+  SensorConfig sensor;
+  const Frame frame = render(*caster, eye, sensor);
+  std::set<std::tuple<int, int, int>> cells;
+  Eigen::AlignedBox3d above_floor = target;
+  above_floor.min().z() += 0.025;
+  for (const Eigen::Vector3f& p : frame.points_sensor) {
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3i k = ((eye * p.cast<double>()).array() / 0.025).floor().cast<int>();
+    const Eigen::Vector3d centre = (k.cast<double>().array() + 0.5).matrix() * 0.025;
+    if (above_floor.contains(centre)) cells.insert({k.x(), k.y(), k.z()});
+  }
+  ASSERT_GE(cells.size(), 3u);
+  ExplorationScore fan(gt, S, target), image(gt, S, target);
+  fan.restrict_to_views(gt, {eye}, viewpoints::ray_fan(sensor.intrinsics, 20, 15), 0.5, 4.0);
+  image.restrict_to_views(gt, {eye}, viewpoints::ray_fan(sensor.intrinsics, 20, 15), 0.5, 4.0);
+  image.restrict_target_to_views(*caster, {eye}, sensor.intrinsics, 0.5, 4.0, 0.025);
+  EXPECT_LT(*fan.observable_target_cells(), cells.size());  // the coarse fan misses cells
+  EXPECT_EQ(*image.observable_target_cells(), cells.size());
+  // Beyond the sensor's range, or behind it, nothing.
+  ExplorationScore near(gt, S, target);
+  near.restrict_target_to_views(*caster, {eye}, sensor.intrinsics, 0.5, 3.0, 0.025);
+  EXPECT_EQ(*near.observable_target_cells(), 0u);
+  Eigen::Isometry3d away = eye;
+  away.linear() = viewpoints::look_along(eye.translation() - target.center(), 0.0);
+  ExplorationScore behind(gt, S, target);
+  behind.restrict_target_to_views(*caster, {away}, sensor.intrinsics, 0.5, 4.0, 0.025);
+  EXPECT_EQ(*behind.observable_target_cells(), 0u);
 }
 
 TEST(ExplorationScore, ViewsKeepWhatTheyReveal) {
