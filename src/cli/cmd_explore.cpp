@@ -164,7 +164,7 @@ int run_explore(const Args& args) {
   Progress progress(args.has("progress"));
   const session::SimulatedWorld world(scene, pc.resolution_m, S, start, arm_inputs.T_world_base,
                                       S.center() - Eigen::Vector3d(0, 0, 0.1), arm_inputs.reach, nc.sensor,
-                                      config.seed, nc.threads,
+                                      nc.clearance_m, config.seed, nc.threads,
                                       [&](const std::string& stage) { progress.update("fvx explore: " + stage); });
   config.T_world_sensor_start = world.start();
   const sim::ExplorationScore& score = world.score();

@@ -37,9 +37,26 @@ void restrict_to_arm(const nbv::Reach& reach, const Eigen::Isometry3d& T_start, 
 
 }  // namespace
 
+namespace {
+
+/// No surface within `clearance_m` of `eye` along any of the 26 grid directions (nor is the
+/// eye inside a solid, from where the nearest faces are hit at once).
+bool clear_around(const sim::RayCaster& caster, const Eigen::Vector3d& eye, double clearance_m) {
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const Eigen::Vector3f d = Eigen::Vector3f(float(dx), float(dy), float(dz)).normalized();
+        if (caster.cast(eye.cast<float>(), d, 0.0f, float(clearance_m)).hit()) return false;
+      }
+  return true;
+}
+
+}  // namespace
+
 bool usable_start(const sim::RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
                   const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
-                  const Eigen::AlignedBox3d& S, std::uint64_t seed) {
+                  const Eigen::AlignedBox3d& S, double clearance_m, std::uint64_t seed) {
   Eigen::Isometry3d T_executed;  // where the arm really puts the sensor (FK of its IK solution)
   try {
     T_executed = start_configuration(reach, T_world_sensor, seed).first;
@@ -48,7 +65,7 @@ bool usable_start(const sim::RayCaster& caster, const Eigen::Isometry3d& T_world
   }
   for (const Eigen::Isometry3d& T : {T_world_sensor, T_executed}) {
     const Eigen::Vector3d eye = T.translation();
-    if (sim::inside_solid(caster, eye.cast<float>())) return false;
+    if (sim::inside_solid(caster, eye.cast<float>()) || !clear_around(caster, eye, clearance_m)) return false;
     bool measures_S = false;
     for (const Eigen::Vector3d& ray : viewpoints::ray_fan(camera.intrinsics, 20, 15)) {  // depth 1 along z
       const Eigen::Vector3d d_world = T.linear() * ray;
@@ -65,7 +82,7 @@ SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, con
                                const std::optional<Eigen::Isometry3d>& T_world_sensor_start,
                                const Eigen::Isometry3d& T_world_base, const Eigen::Vector3d& look_at,
                                const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
-                               std::uint64_t seed, unsigned threads,
+                               double clearance_m, std::uint64_t seed, unsigned threads,
                                const std::function<void(const std::string&)>& progress)
     : S_(S), caster_(sim::make_ray_caster(scene.mesh)) {
   if (T_world_sensor_start) {
@@ -73,7 +90,7 @@ SimulatedWorld::SimulatedWorld(const sim::Scene& scene, double resolution_m, con
   } else {
     progress("the first view");
     start_ = default_start(reach, T_world_base, S, look_at, [&](const Eigen::Isometry3d& T) {
-      return usable_start(*caster_, T, reach, camera, S, seed);
+      return usable_start(*caster_, T, reach, camera, S, clearance_m, seed);
     });
   }
   const Eigen::Vector3d eye = start_.translation();

@@ -130,8 +130,8 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
   }
   observable_ = std::move(kept);
   in_hull_ = std::move(kept_in_hull);
-  observable_target_cells_ = 0;
   if (target_m_) {
+    observable_target_cells_ = 0;
     Eigen::AlignedBox3d above_floor = *target_m_;
     above_floor.min().z() += R;
     for (std::size_t i = 0; i < grid.cell_count(); ++i)

@@ -119,6 +119,23 @@ TEST(CliExplore, ThePaperReplicasEndWithUtilityZero) {
   }
 }
 
+// A suite scene: the arm stands where the sidecar puts it (no --base), and a scene without a
+// target gives no target warning and no observable target count.
+TEST(CliExplore, ASuiteSceneTakesItsBaseFromTheSidecar) {
+  const TempDir dir;
+  const std::string arm_only = " --capmap '" + source("data/arms/fvx-arm.fcm") + "' --arm '" +
+                               source("data/arms/fvx-arm.urdf") + "'";
+  const RunResult r = run_fvx(dir, "explore builtin:suite/6" + arm_only + " --max-views 1 --format json -o s");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json results = json::parse(r.out)["results"];
+  EXPECT_TRUE(results["observable_target_cells"].is_null());
+  EXPECT_GT(results["observable_void_cells"].get<int>(), 100);
+  EXPECT_EQ(r.err.find("sees the target"), std::string::npos) << r.err;
+  const session::Manifest m = session::read_manifest(dir / "s");
+  ASSERT_TRUE(m.T_world_base.has_value());
+  EXPECT_TRUE(m.T_world_base->translation().isApprox(Eigen::Vector3d(0.2, 0.0, 0.0)));
+}
+
 TEST(CliExplore, PoseNoiseTurnsRegistrationOn) {
   const TempDir dir;
   const RunResult r =

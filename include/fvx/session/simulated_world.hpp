@@ -18,12 +18,13 @@ namespace fvx::session {
 
 /// A first view that works in this scene: the arm takes it (start_configuration with `seed`:
 /// the capability map's bit and, with the URDF, IK), and both the pose and the one the arm
-/// really reaches (FK of the IK solution) have their eye outside every solid and at least one
-/// ray of a 20 × 15 fan that measures a surface inside the search space `S` (the Kinect's
-/// rule: the first hit, at a depth within `camera`'s limits).
+/// really reaches (FK of the IK solution) have their eye outside every solid, no surface
+/// within `clearance_m` of it (the search's own clearance), and at least one ray of a
+/// 20 × 15 fan that measures a surface inside the search space `S` (the Kinect's rule: the
+/// first hit, at a depth within `camera`'s limits).
 bool usable_start(const sim::RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
                   const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
-                  const Eigen::AlignedBox3d& S, std::uint64_t seed);
+                  const Eigen::AlignedBox3d& S, double clearance_m, std::uint64_t seed);
 
 class SimulatedWorld {
  public:
@@ -32,14 +33,15 @@ class SimulatedWorld {
   /// observability check start there. With `reach`, "observable" is what some pose of the
   /// capability map would reveal, by the Kinect's rule with `camera`'s depths. The start is
   /// `T_world_sensor_start`, or without it the first of start_candidates (looking at
-  /// `target`, the base at `T_world_base`) that is a usable_start. `scene` must outlive the
+  /// `target`, the base at `T_world_base`) that is a usable_start (with `clearance_m`). `scene` must outlive the
   /// world. Error when the start pose is inside an obstacle or the arm cannot take it
   /// (start_configuration with `seed`), or no candidate is usable. `progress` names each
   /// long stage.
   SimulatedWorld(const sim::Scene& scene, double resolution_m, const Eigen::AlignedBox3d& S,
                  const std::optional<Eigen::Isometry3d>& T_world_sensor_start, const Eigen::Isometry3d& T_world_base,
                  const Eigen::Vector3d& target, const std::optional<nbv::Reach>& reach, const io::DepthCamera& camera,
-                 std::uint64_t seed, unsigned threads, const std::function<void(const std::string&)>& progress);
+                 double clearance_m, std::uint64_t seed, unsigned threads,
+                 const std::function<void(const std::string&)>& progress);
 
   /// The first view's pose, as asked or as chosen.
   const Eigen::Isometry3d& start() const { return start_; }

@@ -55,7 +55,8 @@ class ExplorationScore {
   /// Observable cells inside the hull of the scene's surfaces in S (see the constructor).
   std::size_t observable_void_cells() const;
   /// After restrict_to_views: the target's surface cells (in its box above its lowest cell)
-  /// that some of those poses would measure. 0: no pose of the arm can see the target.
+  /// that some of those poses would measure. 0: no pose of the arm can see the target; empty
+  /// without a target (no warning is due then).
   std::optional<std::size_t> observable_target_cells() const { return observable_target_cells_; }
   /// Observable cells the map knows (free or occupied), as a share of all observable cells.
   double known_fraction(const map::OccupancyMap& map) const;

@@ -67,18 +67,24 @@ TEST(Start, FromEverySideOfASceneTheArmTakesTheDefaultStartAndItSeesTheSearchSpa
   const std::pair<Eigen::Vector3d, double> bases[] = {
       {{0.2, 0.0, 0.0}, 0.0}, {{1.9, 0.15, 0.0}, 180.0}, {{0.8, -1.1, 0.0}, 90.0}, {{0.8, 1.4, 0.0}, -90.0}};
   int first_candidate_unusable = 0;
+  for (const std::uint64_t seed : {1u, 2u, 3u})  // the seed picks IK's restarts, so the reached pose
   for (const auto& [position, yaw_deg] : bases) {
     nbv::Reach reach{&cm, Eigen::Isometry3d::Identity(), &arm, {}};
     reach.T_world_base.translation() = position;
     reach.T_world_base.linear() = Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix();
     reach.ik.position_tolerance_m = cm.header().position_tolerance_m;
     reach.ik.angle_tolerance_rad = cm.header().angle_tolerance_rad;
-    auto usable = [&](const Eigen::Isometry3d& T) { return usable_start(*caster, T, reach, camera, S, 1); };
-    SCOPED_TRACE("base at " + std::to_string(position.x()) + ", " + std::to_string(position.y()));
+    auto usable = [&](const Eigen::Isometry3d& T) { return usable_start(*caster, T, reach, camera, S, 0.1, seed); };
+    SCOPED_TRACE("base at " + std::to_string(position.x()) + ", " + std::to_string(position.y()) + ", seed " +
+                 std::to_string(seed));
     const Eigen::Isometry3d T = default_start(reach, reach.T_world_base, S, look_at, usable);
-    const auto [T_real, joints] = start_configuration(reach, T, 1);
+    const auto [T_real, joints] = start_configuration(reach, T, seed);
     EXPECT_EQ(joints.size(), Eigen::Index(arm.dof()));
     EXPECT_FALSE(sim::inside_solid(*caster, T_real.translation().cast<float>()));
+    // 10 cm clear of the floor (z = 0) and of the lab's walls (x = −0.6 and 2.0, y = ±1.6).
+    const Eigen::Vector3d eye = T_real.translation();
+    EXPECT_GE(eye.z(), 0.1 - 1e-6);
+    EXPECT_TRUE(eye.x() >= -0.5 && eye.x() <= 1.9 && std::abs(eye.y()) <= 1.5) << eye.transpose();
     const sim::Frame frame = sim::render(*caster, T_real, sim::SensorConfig::of(camera, 1, 0));
     std::size_t in_S = 0;
     for (const Eigen::Vector3f& p : frame.points_sensor)
