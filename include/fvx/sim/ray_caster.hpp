@@ -35,7 +35,9 @@ class RayCaster {
                    float t_max) const = 0;
 };
 
-/// True when `p` lies inside a closed part of the mesh: an odd number of surfaces along +x.
+/// True when `p` lies inside a closed part of the mesh: an odd number of surfaces crossed,
+/// along at least two of three fixed skew directions (faces where two solids touch count
+/// once for the caster; the vote keeps one such ray from deciding).
 bool inside_solid(const RayCaster& caster, const Eigen::Vector3f& p);
 
 /// Builds the acceleration structure for `mesh` (which must outlive the caster).

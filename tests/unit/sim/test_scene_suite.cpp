@@ -108,5 +108,30 @@ TEST(SceneSuite, TheCheckNamesOverlapsAndAStrayTarget) {
   EXPECT_EQ(check_scene_layout(no_base).size(), 1u);
 }
 
+// Inside or outside, where solids touch: a floor slab against a wall (their faces at x = 2
+// coincide, one hit for the caster, so a ray along +x from inside the floor counted two
+// crossings and called the point outside), a hollow crate standing on the floor. Oracle: the
+// boxes' own extents.
+TEST(InsideSolid, HoldsWhereSolidsTouch) {
+  Mesh m;
+  m.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(-0.6f, -1.6f, -0.05f), Eigen::Vector3f(2.0f, 1.6f, 0.0f)));
+  m.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(2.0f, -1.6f, -0.05f), Eigen::Vector3f(2.05f, 1.6f, 2.0f)));
+  m.append(hollow_box(Eigen::AlignedBox3f(Eigen::Vector3f(0.5f, -0.2f, 0.0f), Eigen::Vector3f(0.9f, 0.2f, 0.3f)), 0.02f,
+                      {{}, {}, {}, {}, {}, {Face::Open}}));
+  for (const Backend backend : {Backend::Embree, Backend::BruteForce}) {
+    const auto caster = make_ray_caster(m, backend);
+    SCOPED_TRACE(to_string(backend));
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(-0.299f, 0.0006f, -0.004f)));  // in the floor
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(1.5f, 0.3f, -0.03f)));
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(2.02f, 0.0f, -0.02f)));  // in the wall, below the floor's top
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(2.02f, 0.0f, 1.0f)));
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(0.51f, 0.0f, 0.15f)));  // in the crate's wall
+    EXPECT_TRUE(inside_solid(*caster, Eigen::Vector3f(0.7f, 0.0f, 0.01f)));   // in its bottom
+    EXPECT_FALSE(inside_solid(*caster, Eigen::Vector3f(0.7f, 0.0f, 0.15f)));  // the air in the crate
+    EXPECT_FALSE(inside_solid(*caster, Eigen::Vector3f(-0.3f, 0.0f, 0.004f)));  // just above the floor
+    EXPECT_FALSE(inside_solid(*caster, Eigen::Vector3f(1.9f, 0.0f, 0.5f)));
+  }
+}
+
 }  // namespace
 }  // namespace fvx::sim
