@@ -77,9 +77,11 @@ for s in $(expand "$scenes"); do
     for seed in $(expand "$seeds"); do
       id="$(slug "$scene")_${planner}_$seed"
       [ -s "$out/runs/$id.json" ] && continue  # done in an earlier, interrupted evaluation
-      printf '%q explore %q --capmap data/arms/fvx-arm.fcm --arm data/arms/fvx-arm.urdf --strategy %q %s --seed %q --max-views %q --threads %q --timing --format json -o %q > %q 2> %q && mv %q %q\n' \
+      # A failed run leaves its log, not a partial JSON, and names itself with the log's last line.
+      printf '%q explore %q --capmap data/arms/fvx-arm.fcm --arm data/arms/fvx-arm.urdf --strategy %q %s --seed %q --max-views %q --threads %q --timing --format json -o %q > %q 2> %q && mv %q %q || { rm -f %q; echo "evaluate-planners: %s failed: $(tail -1 %q)" >&2; exit 1; }\n' \
         "$fvx" "$scene" "$strategy" "$flags" "$seed" "$max_views" "$threads" "$out/runs/$id.session" \
-        "$out/runs/$id.json.tmp" "$out/runs/$id.log" "$out/runs/$id.json.tmp" "$out/runs/$id.json" >> "$tasks"
+        "$out/runs/$id.json.tmp" "$out/runs/$id.log" "$out/runs/$id.json.tmp" "$out/runs/$id.json" \
+        "$out/runs/$id.json.tmp" "$id" "$out/runs/$id.log" >> "$tasks"
       rm -rf "${out:?}/runs/$id.session"
     done
   done
@@ -89,7 +91,8 @@ for item in $planners; do labels="$labels ${item%%=*}"; done
 total=$(wc -l < "$tasks")
 echo "evaluate-planners: $total runs to do, $jobs at a time, in $out/" >&2
 failed=0
-tr '\n' '\0' < "$tasks" | xargs -0 -P "$jobs" -I{} sh -c '{} || echo "evaluate-planners: failed: {}" >&2' || failed=1
+tr '\n' '\0' < "$tasks" | xargs -0 -P "$jobs" -I{} bash -c '{}' || failed=1
+compgen -G "$out/runs/*.json" >/dev/null || { echo "evaluate-planners: no run finished; see $out/runs/*.log" >&2; exit 1; }
 
 # Per run: the coverage after each view (carried to max-views) and the summary fields.
 runs_csv="$out/runs.csv"
