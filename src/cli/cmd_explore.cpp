@@ -79,6 +79,8 @@ session::ExploreConfig parse_config(const Args& args) {
   nc.count_near_void_cells = parse_near_voids(args, true);
   pc.resolution_m = parse_resolution(args, kDefaultResolution_m);
   pc.target_size_m = parse_target_size(args, 0.0);
+  pc.hull_in_bounds = parse_void_hull(args, false);
+  args.read("unknown-depth", nc.unknown_depth_cells);
   pc.tie_to_search();
   config.seed = nc.seed;
   args.read("max-views", config.max_views);

@@ -127,6 +127,8 @@ int run_nbv(const Args& args) {
   args.read("min-fit-score", cluster_config.min_fit_score);
   cluster_config.seed = config.seed;
   const double target_size_m = parse_target_size(args, 0.0);
+  const bool hull_in_bounds = parse_void_hull(args, false);
+  args.read("unknown-depth", config.unknown_depth_cells);
   check_arm_options(args, "fvx nbv");
   if (config.strategy == nbv::Strategy::Exhaustive && !args.has("capmap"))
     throw UsageError("fvx nbv: --strategy exhaustive enumerates a capability map: give --capmap");
@@ -151,7 +153,7 @@ int run_nbv(const Args& args) {
   };
   progress.update("fvx nbv: frontiers, voids and frontier-voids of " + args.positional[0]);
   const int void_width = voids::void_width_for_target(target_size_m, map.resolution_m());
-  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, cluster_config, void_width);
+  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, cluster_config, void_width, true, hull_in_bounds);
   const nbv::Result r = nbv::select(map, a, reach, config);
   progress.finish();
   if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);
@@ -159,7 +161,7 @@ int run_nbv(const Args& args) {
 
   const double R = map.resolution_m();
   Json report = new_report("nbv");
-  report["config"] = search_config_json(config, target_size_m, void_width, bounds, cluster_config,
+  report["config"] = search_config_json(config, target_size_m, void_width, hull_in_bounds, bounds, cluster_config,
                                  reach ? std::optional<Eigen::Isometry3d>(T_world_base) : std::nullopt);
   report["inputs"] = {{"map", args.positional[0]},
                       {"resolution_m", R},

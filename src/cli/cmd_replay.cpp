@@ -182,6 +182,8 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   nc.count_near_void_cells = parse_near_voids(args, nc.count_near_void_cells);
   pc.resolution_m = parse_resolution(args, pc.resolution_m);
   pc.target_size_m = parse_target_size(args, pc.target_size_m);
+  pc.hull_in_bounds = parse_void_hull(args, pc.hull_in_bounds);
+  args.read("unknown-depth", nc.unknown_depth_cells);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   args.read("seed", nc.seed);

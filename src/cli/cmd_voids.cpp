@@ -16,6 +16,8 @@ const CommandSpec kVoidsSpec = {
         {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
         {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
          "/config/bounds_m"},
+        {"void-hull", 0, "MODE", "the hull: map (default: of every occupied cell, the paper's) or search-space "
+                                 "(of the occupied cells within --bounds only)", "/config/hull_in_bounds"},
         min_fit_score_option("/config/min_fit_score", "region growing keeps a cluster's fit score (Eq. 2) at or above S"),
         seed_option("/config/seed", "order of the region-growing seeds", voids::ClusterConfig{}.seed),
         {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd", "-"},
@@ -33,10 +35,11 @@ int run_voids(const Args& args) {
   voids::ClusterConfig config;
   args.read("min-fit-score", config.min_fit_score);
   args.read("seed", config.seed);
+  const bool hull_in_bounds = parse_void_hull(args, false);
   Stopwatch clock;
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
   const double load_s = clock.lap();
-  frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, config);
+  frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, config, 1, true, hull_in_bounds);
   const double analysis_s = clock.lap();
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
   if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);
@@ -45,10 +48,11 @@ int run_voids(const Args& args) {
   const double R = map.resolution_m();
   Json report = new_report("voids");
   report["config"] = {{"bounds_m", bounds ? bounds_json(*bounds) : Json(nullptr)},
+                      {"hull_in_bounds", hull_in_bounds},
                       {"min_fit_score", config.min_fit_score},
                       {"seed", config.seed},
                       {"definition", "voids: unknown cells inside the convex hull of the occupied cell "
-                                     "centres; frontier-voids: frontier clusters face- or edge-adjacent"}};
+                                     "centres (in the search space, with hull_in_bounds); frontier-voids: frontier clusters face- or edge-adjacent"}};
   report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", R}};
   report["results"] = voids_results_json(a, R);
   if (a.void_cells.empty() && a.warnings.empty()) a.warnings.push_back("no void cell in the search space");

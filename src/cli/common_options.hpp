@@ -34,6 +34,7 @@ using pipeline::parse_accumulation;
 using pipeline::parse_near_voids;
 using pipeline::parse_resolution;
 using pipeline::parse_target_size;
+using pipeline::parse_void_hull;
 using pipeline::resolution_option;
 using pipeline::search_model_options;
 using pipeline::target_size_options;

@@ -105,20 +105,22 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
 }
 
 Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds_m,
-                     const voids::ClusterConfig& config, int min_void_width_cells, bool with_voids) {
+                     const voids::ClusterConfig& config, int min_void_width_cells, bool with_voids,
+                     bool hull_in_bounds) {
+  const std::optional<Eigen::AlignedBox3d> hull_box_m = hull_in_bounds ? bounds_m : std::nullopt;
   const map::Stats stats = map.stats();
   const Eigen::AlignedBox3d known = stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
   if (!known.isEmpty() && (known.sizes() / map.resolution_m()).prod() > double(kMaxDenseCells)) {
     frontiers::FrontierSet frontier_set;  // a few cells far apart: the sets hold only them
     frontier_set.rebuild(map);
     voids::VoidSet void_set;
-    if (with_voids) void_set.rebuild(map);
+    if (with_voids) void_set.rebuild(map, hull_box_m);
     return analyse(map, frontier_set, with_voids ? &void_set : nullptr, bounds_m, config, min_void_width_cells);
   }
   const map::DenseGrid grid(map, known);
   voids::Hull hull;
   std::vector<map::VoxelKey> void_cells;
-  if (with_voids) void_cells = voids::void_cells(grid, hull);
+  if (with_voids) void_cells = voids::void_cells(grid, hull, hull_box_m);
   Analysis a = start(stats, bounds_m, with_voids, hull.empty());
   a.frontier_cells = within(map, frontiers::frontier_cells(grid), a.bounds_m);
   a.void_cells = within(map, std::move(void_cells), a.bounds_m);

@@ -25,6 +25,7 @@ Json config_json(const Config& c) {
           {"exhaustive_rolls", c.exhaustive_rolls},
           {"random_tries", c.random_tries},
           {"count_near_void_cells", c.count_near_void_cells},
+          {"unknown_depth_cells", c.unknown_depth_cells},
           {"accumulation", utility::to_string(c.accumulation)},
           {"max_utility_vectors", c.max_utility_vectors},
           {"top", c.top},

@@ -14,6 +14,7 @@ Json config_json(const Config& c) {
           {"registration", registration::config_json(c.registration)},
           {"clusters", voids::config_json(c.clusters)},
           {"target_size_m", c.target_size_m},
+          {"hull_in_bounds", c.hull_in_bounds},
           {"min_void_width_cells", c.min_void_width_cells()},
           {"analyse", c.analyse},
           {"search", c.search}};

@@ -40,9 +40,26 @@ bool parse_near_voids(const Args& args, bool fallback) {
   return fallback;
 }
 
+std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, const std::string& nbv_echo) {
+  return {{"void-hull", 0, "MODE", "the voids' hull: map (default: of every occupied cell, the paper's accumulated "
+                                   "cloud) or search-space (of the occupied cells in the search space only)",
+           pipeline_echo + "/hull_in_bounds"},
+          {"unknown-depth", 0, "N", "U counts only the first N unknown cells of each ray, those a view reveals for "
+                                    "sure (default 0: every void cell a ray crosses, the paper's)",
+           nbv_echo + "/unknown_depth_cells", dflt(0), in(0, 1000)}};
+}
+
+bool parse_void_hull(const Args& args, bool fallback) {
+  if (!args.has("void-hull")) return fallback;
+  const std::string mode = args.get("void-hull");
+  if (mode != "map" && mode != "search-space")
+    throw UsageError("--void-hull '" + mode + "': expected map or search-space");
+  return mode == "search-space";
+}
+
 std::vector<OptionSpec> search_model_options(const std::string& pipeline_echo, const std::string& nbv_echo) {
   return options({near_voids_options(nbv_echo), target_size_options(pipeline_echo), accumulation_options(nbv_echo),
-                  io::depth_camera_options(nbv_echo)});
+                  void_model_options(pipeline_echo, nbv_echo), io::depth_camera_options(nbv_echo)});
 }
 
 std::vector<OptionSpec> target_size_options(const std::string& echo) {

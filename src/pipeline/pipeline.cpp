@@ -82,7 +82,7 @@ void update_frontiers_and_voids(State& state, const map::Integration& integratio
   if (config.analyse) {
     if (!state.analysed) {
       state.frontier_set.rebuild(state.map);
-      state.void_set.rebuild(state.map);
+      state.void_set.rebuild(state.map, config.hull_in_bounds ? config.bounds_m : std::nullopt);
     } else {
       state.frontier_set.update(state.map, integration.changes);
       state.void_set.update(state.map, integration.changes);

@@ -142,12 +142,13 @@ Json pruning_json(const nbv::Pruning& p) {
 }  // namespace
 
 /// The effective settings: the search's, then the analysis's and where the arm stands.
-Json search_config_json(const nbv::Config& config, double target_size_m, int void_width,
+Json search_config_json(const nbv::Config& config, double target_size_m, int void_width, bool hull_in_bounds,
                  const std::optional<Eigen::AlignedBox3d>& bounds, const voids::ClusterConfig& cluster_config,
                  const std::optional<Eigen::Isometry3d>& T_world_base) {
   Json j = nbv::config_json(config);
   j["target_size_m"] = target_size_m;
   j["min_void_width_cells"] = void_width;
+  j["hull_in_bounds"] = hull_in_bounds;
   j["bounds_m"] = bounds_json(bounds);
   j["min_fit_score"] = cluster_config.min_fit_score;
   j["T_world_base"] = T_world_base ? pose_json(*T_world_base) : Json(nullptr);

@@ -1,4 +1,5 @@
 // The session directory's manifest (man/fvx-session.5).
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -88,6 +89,8 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["registration"] = m.registration;
   j["near_voids"] = m.near_voids;
   j["target_size_m"] = m.target_size_m;
+  j["hull_in_bounds"] = m.hull_in_bounds;
+  j["unknown_depth_cells"] = m.unknown_depth_cells;
   j["accumulation"] = m.accumulation;
   j["max_utility_vectors"] = m.max_utility_vectors;
   Json views = Json::array();
@@ -144,6 +147,15 @@ Manifest read_manifest(const std::string& dir) {
   if (j.contains("target_size_m")) {
     m.target_size_m = r.number(j, "target_size_m");
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
+  }
+  if (j.contains("hull_in_bounds")) {
+    if (!j["hull_in_bounds"].is_boolean()) r.fail("'hull_in_bounds' must be true or false");
+    m.hull_in_bounds = j["hull_in_bounds"].get<bool>();
+  }
+  if (j.contains("unknown_depth_cells")) {
+    const double n = r.number(j, "unknown_depth_cells");
+    if (!(n >= 0 && n <= 1000 && n == std::floor(n))) r.fail("'unknown_depth_cells' must be a whole number in [0, 1000]");
+    m.unknown_depth_cells = int(n);
   }
   if (j.contains("accumulation")) {
     m.accumulation = r.text(j, "accumulation");
@@ -213,6 +225,8 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.registration = pc.register_scans;
   m.near_voids = nc.count_near_void_cells;
   m.target_size_m = pc.target_size_m;
+  m.hull_in_bounds = pc.hull_in_bounds;
+  m.unknown_depth_cells = nc.unknown_depth_cells;
   m.accumulation = utility::to_string(nc.accumulation);
   m.max_utility_vectors = nc.max_utility_vectors;
   return m;

@@ -82,10 +82,12 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     if (exit_m < 0.0) continue;  // it crosses no target
     const double range_m = std::max(exit_m, std::min(depth_min_m_, depth_max_m_) * length);
     std::size_t hit = std::size_t(-1);
+    int unknown = 0;
     grid_.walk_cells(cells_.data(), origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;
-      if (map::VoxelState(cell & 3) == map::VoxelState::Occupied) {
-        hit = i;
+      if (map::VoxelState(cell & 3) == map::VoxelState::Occupied ||
+          (unknown_depth_ > 0 && map::VoxelState(cell & 3) == map::VoxelState::Unknown && ++unknown > unknown_depth_)) {
+        hit = i;  // a surface, or the first unknown cell the ray is not trusted beyond
         return false;
       }
       // The sensor measures nothing nearer than the minimum depth, so it cannot promise

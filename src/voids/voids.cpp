@@ -95,6 +95,7 @@ struct VoidSet::State {
   std::unordered_set<std::uint64_t> occupied;  ///< the cells the hull is built from
   std::unordered_set<std::uint64_t> vertices;  ///< occupied cells on the hull
   Hull hull;
+  std::optional<Eigen::AlignedBox3d> hull_box_m;  ///< only occupied cells in it count
 };
 
 VoidSet::VoidSet() : state_(std::make_unique<State>()) {}
@@ -155,15 +156,17 @@ void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now,
   }
 }
 
-/// Per column (x, y) of the grid, the centres of its lowest and highest occupied cells.
-std::vector<Eigen::Vector3d> column_extremes(const map::DenseGrid& grid) {
+/// Per column (x, y) of the grid, the centres of its lowest and highest occupied cells (in
+/// `box_m` when given).
+std::vector<Eigen::Vector3d> column_extremes(const map::DenseGrid& grid, const std::optional<Eigen::AlignedBox3d>& box_m) {
   const Eigen::Vector3i n = grid.size();
   const std::size_t columns = std::size_t(n.x()) * std::size_t(n.y());
   std::vector<int> low(columns, -1), high(columns, -1);
   std::size_t i = 0;
   for (int z = 0; z < n.z(); ++z)
     for (std::size_t c = 0; c < columns; ++c, ++i)
-      if (grid.state_at(i) == map::VoxelState::Occupied) {
+      if (grid.state_at(i) == map::VoxelState::Occupied &&
+          (!box_m || box_m->contains(grid.center_of(grid.key(i))))) {
         if (low[c] < 0) low[c] = z;
         high[c] = z;
       }
@@ -180,8 +183,9 @@ std::vector<Eigen::Vector3d> column_extremes(const map::DenseGrid& grid) {
 
 }  // namespace
 
-std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull) {
-  hull = convex_hull(column_extremes(grid));
+std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
+                                      const std::optional<Eigen::AlignedBox3d>& hull_box_m) {
+  hull = convex_hull(column_extremes(grid, hull_box_m));
   if (hull.empty()) return {};
   const Eigen::Vector3i n = grid.size();
   const int lo[3] = {grid.min_key().x - 32768, grid.min_key().y - 32768, grid.min_key().z - 32768};
@@ -207,16 +211,19 @@ std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull) {
   return out;
 }
 
-void VoidSet::rebuild(const map::OccupancyMap& map) {
+void VoidSet::rebuild(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& hull_box_m) {
   State& s = *state_;
   s = State{};
+  s.hull_box_m = hull_box_m;
   for (const map::Leaf& leaf : map.leaves()) {
     if (leaf.state != map::VoxelState::Occupied) continue;
     for (std::uint32_t z = 0; z < leaf.size_cells; ++z)
       for (std::uint32_t y = 0; y < leaf.size_cells; ++y)
-        for (std::uint32_t x = 0; x < leaf.size_cells; ++x)
-          s.occupied.insert(pack({std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
-                                  std::uint16_t(leaf.min_key.z + z)}));
+        for (std::uint32_t x = 0; x < leaf.size_cells; ++x) {
+          const map::VoxelKey k{std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
+                                std::uint16_t(leaf.min_key.z + z)};
+          if (!hull_box_m || hull_box_m->contains(map.center_of(k))) s.occupied.insert(pack(k));
+        }
   }
   s.hull = hull_of(map, std::vector<std::uint64_t>(s.occupied.begin(), s.occupied.end()), s.vertices);
   rescan(map, Hull{}, s.hull, s.cells);
@@ -229,6 +236,7 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
   for (const map::Change& c : changes) {
     const std::uint64_t p = pack(c.key);
     if (c.after != map::VoxelState::Unknown) s.cells.erase(p);
+    if (s.hull_box_m && !s.hull_box_m->contains(map.center_of(c.key))) continue;  // not a hull cell
     if (c.after == map::VoxelState::Occupied && c.before != map::VoxelState::Occupied) {
       s.occupied.insert(p);
       if (!s.hull.contains(map.center_of(c.key))) outside.push_back(p);

@@ -52,6 +52,15 @@ TEST(CliFrontiersVoids, ReportsAndFilesPeopleOpen) {
   // Deterministic: the same map gives the same report.
   EXPECT_EQ(run_fvx(dir, "voids map.ot " + bounds).out, run_fvx(dir, "voids map.ot " + bounds).out);
   EXPECT_FALSE(res.contains("timing_s"));
+  // The hull of the occupied cells in the search space only: the floor beyond it no longer
+  // spans the hull, so fewer void cells, all of them void cells of the whole map's hull too.
+  r = run_fvx(dir, "voids map.ot " + bounds + " --void-hull search-space --cloud s.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = json::parse(r.out);
+  EXPECT_EQ(s["config"]["hull_in_bounds"], true);
+  EXPECT_EQ(v["config"]["hull_in_bounds"], false);
+  EXPECT_GT(s["results"]["void_cells"].get<int>(), 0);
+  EXPECT_LT(s["results"]["void_cells"].get<int>(), res["void_cells"].get<int>());
   // --timing adds the load and analysis times, on both commands.
   for (const char* command : {"voids", "frontiers"}) {
     const RunResult timed = run_fvx(dir, std::string(command) + " map.ot --timing " + bounds);
@@ -94,6 +103,7 @@ TEST(CliFrontiersVoids, BadInputIsRefusedOnOneLine) {
       {"frontiers", "2", "one map"},
       {"voids text.ot --bounds 1,1,1,0,0,0", "2", "--bounds"},
       {"voids text.ot --min-fit-score 0", "2", "--min-fit-score"},
+      {"voids text.ot --void-hull walls", "2", "--void-hull"},
   };
   for (const auto& c : cases) {
     const RunResult r = run_fvx(dir, c[0]);

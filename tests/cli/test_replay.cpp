@@ -68,6 +68,41 @@ TEST(CliReplay, ATargetSizeIsRecordedAndReplayed) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out3"));
 }
 
+TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
+  const TempDir dir;
+  const RunResult e = run_fvx(dir, "explore" + kScene + kArm +
+                                       " --void-hull search-space --unknown-depth 1 --max-views 3 --format json -o session");
+  ASSERT_EQ(e.status, 0) << e.err;
+  const json explored = json::parse(e.out);
+  EXPECT_EQ(explored["config"]["pipeline"]["hull_in_bounds"], true);
+  EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["unknown_depth_cells"], 1);
+  const session::Manifest m = session::read_manifest(dir / "session");
+  EXPECT_TRUE(m.hull_in_bounds);
+  EXPECT_EQ(m.unknown_depth_cells, 1);
+  const RunResult r = run_fvx(dir, "replay session -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json replayed = json::parse(r.out);
+  ASSERT_EQ(replayed["results"]["rows"].size(), explored["results"]["rows"].size());
+  for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
+    const json& a = explored["results"]["rows"][i];
+    const json& b = replayed["results"]["rows"][i];
+    EXPECT_EQ(b["void_cells"], a["void_cells"]) << "view " << i + 1;
+    EXPECT_EQ(b["map_void_cells"], a["map_void_cells"]) << "view " << i + 1;
+  }
+  // The lab's floor and wall beyond S widen the whole map's hull: more void cells in the
+  // same first map.
+  const RunResult whole = run_fvx(dir, "replay session -o out2 --void-hull map --to 1 --format json");
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  EXPECT_GT(json::parse(whole.out)["results"]["rows"][0]["map_void_cells"].get<int>(),
+            explored["results"]["rows"][0]["map_void_cells"].get<int>());
+  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1"}) {
+    const RunResult b = run_fvx(dir, "replay session -o out3 " + bad);
+    EXPECT_EQ(b.status, 2) << bad;
+    EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << b.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out3"));
+  }
+}
+
 TEST(CliReplay, ASessionReplaysToTheSameTableAndTheSameViews) {
   const TempDir dir;
   const json explored = record(dir)["results"]["rows"];

@@ -55,8 +55,11 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
 /// on a real map — the path of the one-shot commands (`fvx frontiers`, `voids`, `nbv`).
 /// `with_voids` false: frontiers only, as analyse() without a void set. A known box of more
 /// than 2^28 cells (a few cells far apart) goes through the sets instead.
+/// `hull_in_bounds`: the voids' hull from the occupied cells in bounds_m only
+/// (VoidSet::rebuild's hull_box_m), as `fvx explore` and `replay` keep it.
 Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds_m,
-                     const voids::ClusterConfig& config, int min_void_width_cells = 1, bool with_voids = true);
+                     const voids::ClusterConfig& config, int min_void_width_cells = 1, bool with_voids = true,
+                     bool hull_in_bounds = false);
 
 /// Utility in dm³ (1 dm³ = 10⁻³ m³): the unit of the paper's tables.
 inline double to_dm3(double m3) { return m3 * 1000.0; }

@@ -93,6 +93,9 @@ struct Config {
   /// Measured (README, "One default"): the default finds better single views and the victim
   /// more often; false ends the paper replicas' loops at utility 0 more often.
   bool count_near_void_cells = true;
+  /// U counts only the first N unknown cells of each ray (viewpoints::FovScorer::
+  /// set_unknown_depth); 0: every void cell a ray crosses (the paper's).
+  int unknown_depth_cells = 0;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
   /// (utility/utility.hpp).

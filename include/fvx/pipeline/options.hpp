@@ -39,6 +39,13 @@ std::vector<OptionSpec> accumulation_options(const std::string& echo);
 /// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
 void parse_accumulation(const Args& args, nbv::Config& config);
 
+/// --void-hull map|search-space (pipeline::Config::hull_in_bounds) and --unknown-depth N
+/// (nbv::Config::unknown_depth_cells): two measured alternatives to the paper's void set
+/// and U, off by default (README, "Exploration over a scene suite").
+std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, const std::string& nbv_echo);
+/// --void-hull's value as hull_in_bounds, `fallback` when absent; UsageError when bad.
+bool parse_void_hull(const Args& args, bool fallback);
+
 /// What the search models, for commands that search: --far-voids-only/--near-voids,
 /// --target-size, --accumulation/--utility-vectors and the depth camera; `pipeline_echo` and
 /// `nbv_echo` point at the report's pipeline and search configs.

@@ -33,6 +33,10 @@ struct Config {
   /// The searched object's smallest extent, metres: only void cells in an all-void cube
   /// that always fits it count (min_void_width_cells()). 0: every void cell (the paper).
   double target_size_m = 0.0;
+  /// The voids' hull from the occupied cells in bounds_m only (surfaces outside S, a room's
+  /// walls, do not make the air in S a void); false: from every occupied cell (the paper's
+  /// accumulated cloud). Without bounds_m the two agree.
+  bool hull_in_bounds = false;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
   /// Steps 4–6, frontiers, voids and frontier-voids; false: the step ends with the map
   /// (fvx integrate), and the search is off too.

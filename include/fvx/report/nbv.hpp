@@ -21,7 +21,7 @@ Json nbv_results_json(const nbv::Result& r, const frontier_voids::Analysis& a, d
 
 /// The effective settings of `fvx nbv`: the search's, then the analysis's and where the arm
 /// stands (null: free-flying).
-Json search_config_json(const nbv::Config& config, double target_size_m, int void_width,
+Json search_config_json(const nbv::Config& config, double target_size_m, int void_width, bool hull_in_bounds,
                         const std::optional<Eigen::AlignedBox3d>& bounds, const voids::ClusterConfig& cluster_config,
                         const std::optional<Eigen::Isometry3d>& T_world_base);
 

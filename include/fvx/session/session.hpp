@@ -53,6 +53,12 @@ struct Manifest {
   /// Only void cells that could hide an object this large counted (fvx explore
   /// --target-size; voids/width.hpp), metres. Absent: 0, every void cell.
   double target_size_m = 0.0;
+  /// The voids' hull from the occupied cells in the search space only (pipeline::Config::
+  /// hull_in_bounds; fvx explore --void-hull search-space). Absent: false.
+  bool hull_in_bounds = false;
+  /// U counted only the first N unknown cells of each ray (nbv::Config::unknown_depth_cells;
+  /// fvx explore --unknown-depth). Absent: 0, every void cell.
+  int unknown_depth_cells = 0;
   /// Algorithm 1's accumulation (nbv::Config::accumulation) and its budget. Absent:
   /// "exact", as every session before the sampled accumulation was recorded.
   std::string accumulation = "exact";

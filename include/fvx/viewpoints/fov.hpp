@@ -57,6 +57,12 @@ class FovScorer {
   const map::DenseGrid& grid() const { return grid_; }
   std::size_t ray_count() const { return rays_sensor_.size(); }
 
+  /// Counts only the first `cells` unknown cells of each ray (0: every one, the paper's U).
+  /// The first unknown cell a ray reaches through known free cells is revealed for sure
+  /// (a surface in it is measured, or the ray passes on and clears it); beyond it, an unknown
+  /// cell may hide a surface. A ray cut this way nearer than the minimum depth counts nothing.
+  void set_unknown_depth(int cells) { unknown_depth_ = cells; }
+
  private:
   const map::DenseGrid& grid_;
   /// Per grid cell: its VoxelState in the low two bits, kTarget when it is a target: the
@@ -71,6 +77,7 @@ class FovScorer {
   double depth_max_m_;
   double depth_min_m_;
   double count_from_m_;  ///< targets nearer than this (depth) do not count
+  int unknown_depth_ = 0;  ///< unknown cells counted per ray, 0: all
 };
 
 }  // namespace fvx::viewpoints

@@ -35,8 +35,10 @@ Hull convex_hull(const std::vector<Eigen::Vector3d>& points);
 /// key order, from scratch, and that hull: what VoidSet::rebuild finds when the grid holds
 /// every known cell of the map. The hull is built from each column's lowest and highest
 /// occupied cell only (the others lie between them), and the cells are read from the flat
-/// array, not the octree.
-std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull);
+/// array, not the octree. With `hull_box_m`, only occupied cells whose centres lie in it
+/// build the hull (VoidSet::rebuild's hull_box_m).
+std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
+                                      const std::optional<Eigen::AlignedBox3d>& hull_box_m = std::nullopt);
 
 class VoidSet {
  public:
@@ -45,8 +47,10 @@ class VoidSet {
   VoidSet(VoidSet&&) noexcept;
   VoidSet& operator=(VoidSet&&) noexcept;
 
-  /// All void cells of `map`, from scratch.
-  void rebuild(const map::OccupancyMap& map);
+  /// All void cells of `map`, from scratch. With `hull_box_m`, the hull is that of the
+  /// occupied cells whose centres lie in the box (the search space: surfaces outside it, a
+  /// room's walls, do not make the air inside it a void); update() keeps the box.
+  void rebuild(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& hull_box_m = std::nullopt);
   /// After `map` integrated a scan with these changes: cells that became known leave; when
   /// the occupied cells change the hull, only the cells between the old and the new hull,
   /// column by column, are examined.

@@ -105,7 +105,7 @@ struct RandomGrid {
 // depth_min gives no measurement: nothing on that ray counts.
 std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
                                   double range, double depth_min = 0.0,
-                                  const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ()) {
+                                  const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ(), int unknown_depth = 0) {
   const Eigen::Vector3d d = dir.normalized();
   std::vector<std::pair<double, std::size_t>> entered;
   for (std::size_t i = 0; i < g.grid->cell_count(); ++i) {
@@ -126,8 +126,10 @@ std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o,
   }
   std::sort(entered.begin(), entered.end());
   std::set<std::size_t> seen;
+  int unknown = 0;  // with unknown_depth > 0, the cell after that many unknown ones ends the ray as a surface does
   for (const auto& [t, i] : entered) {
-    if (g.grid->state_at(i) == map::VoxelState::Occupied) {
+    const bool last_trusted = unknown_depth > 0 && g.grid->state_at(i) == map::VoxelState::Unknown && ++unknown > unknown_depth;
+    if (g.grid->state_at(i) == map::VoxelState::Occupied || last_trusted) {
       if (depth_min > 0.0 && (g.grid->center_of(g.grid->key(i)) - o).dot(axis) < depth_min) return {};
       break;
     }
@@ -237,6 +239,42 @@ TEST(FovScorer, FarTargetsOnlyDropsTheCellsNearerThanTheMinimumDepth) {
     dropped += seen_all.size() - seen_far.size();
   }
   EXPECT_GT(dropped, 0u);
+}
+
+// U counting only the first N unknown cells of each ray: the oracle walks the whole ray and
+// stops after N unknown cells; a ray stopped nearer than the minimum depth counts nothing.
+TEST(FovScorer, UnknownDepthCountsOnlyTheFirstUnknownCellsOfEachRay) {
+  const RandomGrid g(8);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  const auto rays = ray_fan(io::Intrinsics{}, 8, 6);
+  for (const double depth_min : {0.0, 0.35}) {
+    const FovScorer all(*g.grid, g.target, rays, 0.9, depth_min);
+    for (const int depth : {1, 2}) {
+      FovScorer shallow(*g.grid, g.target, rays, 0.9, depth_min);
+      shallow.set_unknown_depth(depth);
+      FovScorer::Workspace ws;
+      std::size_t counted = 0, counted_all = 0;
+      for (int pose = 0; pose < 30; ++pose) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+        T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+        std::set<std::size_t> expected;
+        for (const auto& r : rays) {
+          const auto s = oracle_seen(g, T.translation(), T.linear() * r, 0.9 * r.norm(), depth_min, T.linear().col(2), depth);
+          expected.insert(s.begin(), s.end());
+        }
+        std::vector<std::size_t> seen;
+        shallow.score(T, ws, &seen);
+        ASSERT_EQ(seen, std::vector<std::size_t>(expected.begin(), expected.end()))
+            << "pose " << pose << " depth " << depth << " depth_min " << depth_min;
+        counted += seen.size();
+        counted_all += all.score(T, ws).targets_seen;
+      }
+      EXPECT_GT(counted, 0u);
+      EXPECT_LT(counted, counted_all);
+    }
+  }
 }
 
 }  // namespace

@@ -84,6 +84,34 @@ TEST(Voids, FromScratchEqualsBruteForceAndIncrementalOnRandomMaps) {
   }
 }
 
+TEST(Voids, AHullBoxBuildsTheHullFromTheOccupiedCellsInItOnly) {
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-0.45, -0.45, -0.45), Eigen::Vector3d(0.45, 0.45, 0.45));
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    map::OccupancyMap map(0.1);
+    VoidSet incremental;
+    incremental.rebuild(map, box);
+    for (int s = 0; s < 4; ++s) {
+      const Eigen::Vector3f origin(0.25f * s, 0.1f * float(seed), 0.05f * s);
+      incremental.update(map, map.integrate(random_scan(rng, origin, 200), origin, 0.9).changes);
+      std::vector<Eigen::Vector3d> in_box;
+      for (const Eigen::Vector3d& c : occupied_centres(map))
+        if (box.contains(c)) in_box.push_back(c);
+      const auto oracle = brute_force(map, convex_hull(in_box));
+      ASSERT_FALSE(oracle.empty()) << "seed " << seed << " scan " << s;
+      // Surfaces outside the box do not widen it: fewer cells than the whole map's hull.
+      EXPECT_LT(oracle.size(), brute_force(map, convex_hull(occupied_centres(map))).size());
+      VoidSet scratch;
+      scratch.rebuild(map, box);
+      EXPECT_EQ(scratch.cells(map), oracle) << "seed " << seed << " scan " << s;
+      EXPECT_EQ(incremental.cells(map), oracle) << "seed " << seed << " scan " << s;
+      Hull hull;
+      const map::DenseGrid grid(map, Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-2), Eigen::Vector3d::Constant(2)));
+      EXPECT_EQ(void_cells(grid, hull, box), oracle) << "seed " << seed << " scan " << s;
+    }
+  }
+}
+
 TEST(Voids, AMapWithoutVolumeHasNoVoids) {
   map::OccupancyMap map(0.1);
   VoidSet set;
