@@ -53,6 +53,10 @@ const CommandSpec kExploreSpec = {
                   "/config/depth_noise_m_per_m2"},
                  seed_option("/config/seed", "seed of the planner, the depth noise and the pose noise",
                              session::ExploreConfig{}.seed),
+                 {"no-return", 0, "MODE", "a ray of the virtual Kinect that meets no surface within its depth "
+                                          "limit: none (default: no measurement, as a Kinect) or free (a point "
+                                          "beyond the limit that clears the ray up to it, as a laser's max-range "
+                                          "return)", "/config/pipeline/clear_beyond_range"},
                  {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json", "-"},
                  threads_option("/config/pipeline/nbv/threads", "threads for rendering and the search"),
              },
@@ -81,6 +85,11 @@ session::ExploreConfig parse_config(const Args& args) {
   pc.target_size_m = parse_target_size(args, 0.0);
   pc.hull_in_bounds = parse_void_hull(args, false);
   args.read("unknown-depth", nc.unknown_depth_cells);
+  if (args.has("no-return")) {
+    const std::string mode = args.get("no-return");
+    if (mode != "none" && mode != "free") throw UsageError("--no-return '" + mode + "': expected none or free");
+    pc.clear_beyond_range = mode == "free";
+  }
   pc.tie_to_search();
   config.seed = nc.seed;
   args.read("max-views", config.max_views);
@@ -101,6 +110,8 @@ session::ExploreConfig parse_config(const Args& args) {
 sim::SensorConfig render_config_of(const Args& args, const nbv::Config& nc) {
   sim::SensorConfig render_config = sim::SensorConfig::of(nc.sensor, nc.seed, nc.threads);
   render_config.noise_m_per_m2 = parse_depth_noise(args);
+  // Beyond the limit by a margin that float rounding of the recorded scan cannot undo.
+  if (args.has("no-return") && args.get("no-return") == "free") render_config.no_return_depth_m = 2.0 * nc.sensor.depth_max_m;
   return render_config;
 }
 

@@ -15,6 +15,7 @@ Json config_json(const Config& c) {
           {"clusters", voids::config_json(c.clusters)},
           {"target_size_m", c.target_size_m},
           {"hull_in_bounds", c.hull_in_bounds},
+          {"clear_beyond_range", c.clear_beyond_range},
           {"min_void_width_cells", c.min_void_width_cells()},
           {"analyse", c.analyse},
           {"search", c.search}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/stopwatch.hpp"
@@ -14,7 +15,7 @@ int Config::min_void_width_cells() const { return voids::void_width_for_target(t
 
 void Config::tie_to_search() {
   filter.depth_min_m = nbv.sensor.depth_min_m;
-  filter.depth_max_m = nbv.sensor.depth_max_m;
+  filter.depth_max_m = clear_beyond_range ? std::numeric_limits<double>::infinity() : nbv.sensor.depth_max_m;
   clusters.seed = nbv.seed;
 }
 

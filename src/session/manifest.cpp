@@ -91,6 +91,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["target_size_m"] = m.target_size_m;
   j["hull_in_bounds"] = m.hull_in_bounds;
   j["unknown_depth_cells"] = m.unknown_depth_cells;
+  j["clear_beyond_range"] = m.clear_beyond_range;
   j["accumulation"] = m.accumulation;
   j["max_utility_vectors"] = m.max_utility_vectors;
   Json views = Json::array();
@@ -106,6 +107,40 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   write_file_atomically((std::filesystem::path(dir) / "manifest.json").string(),
                         [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
+
+namespace {
+
+/// The search model's settings, each optional (absent in sessions written before it existed).
+void read_search_model(const Json& j, const Reader& r, Manifest& m) {
+  const auto flag = [&](const char* key, bool& out) {
+    if (!j.contains(key)) return;
+    if (!j[key].is_boolean()) r.fail(std::string("'") + key + "' must be true or false");
+    out = j[key].get<bool>();
+  };
+  flag("near_voids", m.near_voids);
+  flag("hull_in_bounds", m.hull_in_bounds);
+  flag("clear_beyond_range", m.clear_beyond_range);
+  if (j.contains("target_size_m")) {
+    m.target_size_m = r.number(j, "target_size_m");
+    if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
+  }
+  if (j.contains("unknown_depth_cells")) {
+    const double n = r.number(j, "unknown_depth_cells");
+    if (!(n >= 0 && n <= 1000 && n == std::floor(n))) r.fail("'unknown_depth_cells' must be a whole number in [0, 1000]");
+    m.unknown_depth_cells = int(n);
+  }
+  if (j.contains("accumulation")) {
+    m.accumulation = r.text(j, "accumulation");
+    if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");
+  }
+  if (j.contains("max_utility_vectors")) {
+    const Json& v = j["max_utility_vectors"];
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 7) r.fail("'max_utility_vectors' must be an integer >= 7");
+    m.max_utility_vectors = v.get<std::uint64_t>();
+  }
+}
+
+}  // namespace
 
 Manifest read_manifest(const std::string& dir) {
   const std::string file = (std::filesystem::path(dir) / "manifest.json").string();
@@ -140,32 +175,7 @@ Manifest read_manifest(const std::string& dir) {
   m.pose_noise_m = r.number(r.at(j, "pose_noise"), "sigma_m");
   m.pose_noise_deg = r.number(r.at(j, "pose_noise"), "sigma_deg");
   m.registration = r.at(j, "registration").get<bool>();
-  if (j.contains("near_voids")) {
-    if (!j["near_voids"].is_boolean()) r.fail("'near_voids' must be true or false");
-    m.near_voids = j["near_voids"].get<bool>();
-  }
-  if (j.contains("target_size_m")) {
-    m.target_size_m = r.number(j, "target_size_m");
-    if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
-  }
-  if (j.contains("hull_in_bounds")) {
-    if (!j["hull_in_bounds"].is_boolean()) r.fail("'hull_in_bounds' must be true or false");
-    m.hull_in_bounds = j["hull_in_bounds"].get<bool>();
-  }
-  if (j.contains("unknown_depth_cells")) {
-    const double n = r.number(j, "unknown_depth_cells");
-    if (!(n >= 0 && n <= 1000 && n == std::floor(n))) r.fail("'unknown_depth_cells' must be a whole number in [0, 1000]");
-    m.unknown_depth_cells = int(n);
-  }
-  if (j.contains("accumulation")) {
-    m.accumulation = r.text(j, "accumulation");
-    if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");
-  }
-  if (j.contains("max_utility_vectors")) {
-    const Json& v = j["max_utility_vectors"];
-    if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 7) r.fail("'max_utility_vectors' must be an integer >= 7");
-    m.max_utility_vectors = v.get<std::uint64_t>();
-  }
+  read_search_model(j, r, m);
   const Json& views = r.at(j, "views");
   if (!views.is_array()) r.fail("'views' must be an array");
   for (const Json& jv : views) {
@@ -227,6 +237,7 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.target_size_m = pc.target_size_m;
   m.hull_in_bounds = pc.hull_in_bounds;
   m.unknown_depth_cells = nc.unknown_depth_cells;
+  m.clear_beyond_range = pc.clear_beyond_range;
   m.accumulation = utility::to_string(nc.accumulation);
   m.max_utility_vectors = nc.max_utility_vectors;
   return m;

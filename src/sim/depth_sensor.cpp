@@ -28,6 +28,8 @@ std::vector<std::string> SensorConfig::validate() const {
   if (!(baseline_m > 0.0)) problems.push_back("baseline_m must be > 0 m");
   if (!(dropout_incidence_deg > 0.0 && dropout_incidence_deg <= 90.0))
     problems.push_back("dropout_incidence_deg must be in (0, 90]");
+  if (!(no_return_depth_m == 0.0 || (no_return_depth_m > depth_max_m && std::isfinite(no_return_depth_m))))
+    problems.push_back("no_return_depth_m must be 0 or a finite depth beyond depth_max_m");
   return problems;
 }
 
@@ -80,6 +82,8 @@ Frame render(const RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
         const Hit hit = caster.cast(origin, ray_world, 0.0f, float(config.depth_max_m));
         if (!hit.hit()) {
           ++counts.no_surface;
+          if (config.no_return_depth_m > 0.0)
+            frame.points_sensor[std::size_t(v) * K.width + u] = float(config.no_return_depth_m) * ray_sensor;
           continue;
         }
         double z = hit.distance;

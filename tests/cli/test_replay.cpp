@@ -103,6 +103,34 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   }
 }
 
+// Without walls a Kinect measures nothing above the scene; with --no-return free those rays
+// clear space up to the depth limit. The scans carry them as far points, so replay agrees.
+TEST(CliReplay, RaysWithoutASurfaceClearSpaceWhenAskedAndReplayAlike) {
+  const TempDir dir;
+  const std::string run = "explore builtin:suite/1" + kArm + " --max-views 2 --format json";
+  const RunResult kinect = run_fvx(dir, run + " -o kinect");
+  ASSERT_EQ(kinect.status, 0) << kinect.err;
+  const RunResult laser = run_fvx(dir, run + " --no-return free -o laser");
+  ASSERT_EQ(laser.status, 0) << laser.err;
+  const json k = json::parse(kinect.out), l = json::parse(laser.out);
+  EXPECT_EQ(k["config"]["pipeline"]["clear_beyond_range"], false);
+  EXPECT_EQ(l["config"]["pipeline"]["clear_beyond_range"], true);
+  EXPECT_TRUE(session::read_manifest(dir / "laser").clear_beyond_range);
+  // The same first view (the start), more of the space known.
+  EXPECT_GT(l["results"]["rows"][0]["known_dm3"].get<double>(), 1.5 * k["results"]["rows"][0]["known_dm3"].get<double>());
+  const RunResult r = run_fvx(dir, "replay laser -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json replayed = json::parse(r.out);
+  ASSERT_EQ(replayed["results"]["rows"].size(), l["results"]["rows"].size());
+  for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
+    EXPECT_EQ(replayed["results"]["rows"][i]["known_dm3"], l["results"]["rows"][i]["known_dm3"]) << "view " << i + 1;
+    EXPECT_EQ(replayed["results"]["rows"][i]["map_void_cells"], l["results"]["rows"][i]["map_void_cells"]);
+  }
+  const RunResult bad = run_fvx(dir, run + " --no-return maybe -o bad");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--no-return"), std::string::npos) << bad.err;
+}
+
 TEST(CliReplay, ASessionReplaysToTheSameTableAndTheSameViews) {
   const TempDir dir;
   const json explored = record(dir)["results"]["rows"];

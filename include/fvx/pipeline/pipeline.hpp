@@ -37,6 +37,10 @@ struct Config {
   /// walls, do not make the air in S a void); false: from every occupied cell (the paper's
   /// accumulated cloud). Without bounds_m the two agree.
   bool hull_in_bounds = false;
+  /// Points beyond the sensor's depth limit are kept and clear their ray up to max_range_m
+  /// without an endpoint (OctoMap's maxrange), as a laser's max-range returns do; false:
+  /// the filter drops them (a Kinect's pixels without depth carry no ray).
+  bool clear_beyond_range = false;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
   /// Steps 4–6, frontiers, voids and frontier-voids; false: the step ends with the map
   /// (fvx integrate), and the search is off too.

@@ -59,6 +59,9 @@ struct Manifest {
   /// U counted only the first N unknown cells of each ray (nbv::Config::unknown_depth_cells;
   /// fvx explore --unknown-depth). Absent: 0, every void cell.
   int unknown_depth_cells = 0;
+  /// Scans hold rays without a surface as points beyond the depth limit, which clear their
+  /// ray (pipeline::Config::clear_beyond_range; fvx explore --no-return free). Absent: false.
+  bool clear_beyond_range = false;
   /// Algorithm 1's accumulation (nbv::Config::accumulation) and its budget. Absent:
   /// "exact", as every session before the sampled accumulation was recorded.
   std::string accumulation = "exact";

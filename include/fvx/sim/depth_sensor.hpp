@@ -27,6 +27,11 @@ struct SensorConfig {
   /// Surfaces seen at more than this angle from their normal give no measurement, degrees.
   /// 90 (default): none dropped.
   double dropout_incidence_deg = 90.0;
+  /// > depth_max_m: a ray that meets no surface within depth_max_m is reported as the point
+  /// at this depth (not in the depth image), as a laser reports a max-range return, so that
+  /// integration clears the ray up to its range. 0 (default): NaN, no measurement, as a
+  /// Kinect gives.
+  double no_return_depth_m = 0.0;
   std::uint64_t seed = 1;         ///< noise seed; each frame mixes in its index
   unsigned threads = 0;           ///< 0: all cores
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "fvx/core/error.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 
 namespace fvx::sim {
@@ -90,6 +91,42 @@ TEST(DepthSensor, RangeLimitsDropPointsButStillOcclude) {
   config.depth_max_m = 6.0;
   frame = render(*caster, kIdentity, config);
   EXPECT_EQ(frame.valid + frame.too_near, 640u * 480u);  // the plate hides the wall behind it
+}
+
+// A ray with no surface within range comes back as the point at no_return_depth_m along it
+// when asked (a laser's max-range return), never in the depth image; too near or hit: as before.
+TEST(DepthSensor, RaysWithoutASurfaceBecomeFarPointsWhenAsked) {
+  Mesh mesh;
+  mesh.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(-0.25f, -0.25f, 2.0f), Eigen::Vector3f(0.25f, 0.25f, 2.5f)));
+  Mesh near_plate;  // covers the image's top-left corner, nearer than the minimum depth
+  near_plate.add_box(Eigen::AlignedBox3f(Eigen::Vector3f(-1.0f, -1.0f, 0.3f), Eigen::Vector3f(-0.05f, -0.05f, 0.31f)));
+  mesh.append(near_plate);
+  const auto caster = make_ray_caster(mesh);
+  SensorConfig config;
+  const Frame kinect = render(*caster, kIdentity, config);
+  config.no_return_depth_m = 8.0;
+  const Frame laser = render(*caster, kIdentity, config);
+  EXPECT_EQ(laser.valid, kinect.valid);
+  EXPECT_EQ(laser.no_surface, kinect.no_surface);
+  EXPECT_GT(kinect.too_near, 0u);
+  EXPECT_EQ(laser.depth.raw, kinect.depth.raw);
+  std::size_t far = 0;
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const std::size_t i = std::size_t(v) * 640 + u;
+      const Eigen::Vector3f& k = kinect.points_sensor[i];
+      const Eigen::Vector3f& l = laser.points_sensor[i];
+      if (k.allFinite()) {
+        EXPECT_EQ(l, k);
+      } else if (l.allFinite()) {
+        ++far;
+        EXPECT_FLOAT_EQ(l.z(), 8.0f);
+        EXPECT_NEAR(l.x(), float((u - 319.5) / 525.0 * 8.0), 1e-5);
+      }
+    }
+  EXPECT_EQ(far, kinect.no_surface);  // too-near pixels stay without a point
+  config.no_return_depth_m = 3.0;     // not beyond depth_max_m (4 m)
+  EXPECT_THROW(render(*caster, kIdentity, config), Error);
 }
 
 TEST(DepthSensor, SameSeedSameNoiseAndTheModelSigma) {
