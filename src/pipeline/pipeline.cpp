@@ -17,6 +17,7 @@ void Config::tie_to_search() {
   filter.depth_min_m = nbv.sensor.depth_min_m;
   filter.depth_max_m = clear_beyond_range ? std::numeric_limits<double>::infinity() : nbv.sensor.depth_max_m;
   clusters.seed = nbv.seed;
+  nbv.top = std::max(nbv.top, nbv.valid_poses);
 }
 
 std::vector<std::string> Config::validate() const {

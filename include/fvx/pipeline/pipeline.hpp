@@ -52,8 +52,10 @@ struct Config {
   /// (voids::void_width_for_target; frontier_voids::analyse); 1 for target size 0.
   int min_void_width_cells() const;
   /// For the loops, once the search's sensor and seed are set: the scan filter keeps the
-  /// sensor's depth range (what the search models is what is integrated) and region growing
-  /// takes the search's seed. One call instead of copies in each command.
+  /// sensor's depth range (what the search models is what is integrated), region growing
+  /// takes the search's seed, and every valid pose is ranked (top >= valid_poses): a loop
+  /// passes over ranked views that repeat a view already taken, and ten may all do so.
+  /// One call instead of copies in each command.
   void tie_to_search();
   std::vector<std::string> validate() const;
 };
