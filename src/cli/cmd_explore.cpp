@@ -106,12 +106,15 @@ session::ExploreConfig parse_config(const Args& args) {
   return config;
 }
 
-/// The virtual Kinect of the run: the search's sensor, seeded, with the depth noise asked for.
-sim::SensorConfig render_config_of(const Args& args, const nbv::Config& nc) {
+/// The virtual Kinect of the run: the search's sensor, seeded, with the depth noise asked for
+/// and, when the pipeline clears rays beyond the range, max-range points for rays without a
+/// surface.
+sim::SensorConfig render_config_of(const Args& args, const pipeline::Config& pc) {
+  const nbv::Config& nc = pc.nbv;
   sim::SensorConfig render_config = sim::SensorConfig::of(nc.sensor, nc.seed, nc.threads);
   render_config.noise_m_per_m2 = parse_depth_noise(args);
   // Beyond the limit by a margin that float rounding of the recorded scan cannot undo.
-  if (args.has("no-return") && args.get("no-return") == "free") render_config.no_return_depth_m = 2.0 * nc.sensor.depth_max_m;
+  if (pc.clear_beyond_range) render_config.no_return_depth_m = 2.0 * nc.sensor.depth_max_m;
   return render_config;
 }
 
@@ -154,7 +157,7 @@ int run_explore(const Args& args) {
   session::ExploreConfig config = parse_config(args);
   pipeline::Config& pc = config.pipeline;
   nbv::Config& nc = pc.nbv;
-  const sim::SensorConfig render_config = render_config_of(args, nc);
+  const sim::SensorConfig render_config = render_config_of(args, pc);
   // Inputs: the scene, the arm; then the start pose against both.
   const sim::Scene scene = scene_from(args.positional[0], args);
   ArmInputs arm_inputs;

@@ -16,8 +16,7 @@ const CommandSpec kVoidsSpec = {
         {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
         {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
          "/config/bounds_m"},
-        {"void-hull", 0, "MODE", "the hull: map (default: of every occupied cell, the paper's) or search-space "
-                                 "(of the occupied cells within --bounds only)", "/config/hull_in_bounds"},
+        void_hull_option("/config/hull_in_bounds"),
         min_fit_score_option("/config/min_fit_score", "region growing keeps a cluster's fit score (Eq. 2) at or above S"),
         seed_option("/config/seed", "order of the region-growing seeds", voids::ClusterConfig{}.seed),
         {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd", "-"},

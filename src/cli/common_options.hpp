@@ -38,6 +38,7 @@ using pipeline::parse_void_hull;
 using pipeline::resolution_option;
 using pipeline::search_model_options;
 using pipeline::target_size_options;
+using pipeline::void_hull_option;
 
 /// What arm_options() loaded (nbv::load_arm); `reach` points into it, so keep it alive
 /// while using reach.

@@ -49,6 +49,7 @@ std::vector<std::string> Config::validate() const {
   if (random_tries < 1) problems.push_back("random_tries must be >= 1");
   if (top < 1) problems.push_back("top must be >= 1");
   if (max_utility_vectors < 7) problems.push_back("max_utility_vectors must be >= 7");
+  if (unknown_depth_cells < 0) problems.push_back("unknown_depth_cells must be >= 0");
   return problems;
 }
 

@@ -40,10 +40,13 @@ bool parse_near_voids(const Args& args, bool fallback) {
   return fallback;
 }
 
+OptionSpec void_hull_option(const std::string& echo) {
+  return {"void-hull", 0, "MODE", "the voids' hull: map (default: of every occupied cell, the paper's accumulated "
+                                  "cloud) or search-space (of the occupied cells in the search space only)", echo};
+}
+
 std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, const std::string& nbv_echo) {
-  return {{"void-hull", 0, "MODE", "the voids' hull: map (default: of every occupied cell, the paper's accumulated "
-                                   "cloud) or search-space (of the occupied cells in the search space only)",
-           pipeline_echo + "/hull_in_bounds"},
+  return {void_hull_option(pipeline_echo + "/hull_in_bounds"),
           {"unknown-depth", 0, "N", "U counts only the first N unknown cells of each ray, those a view reveals for "
                                     "sure (default 0: every void cell a ray crosses, the paper's)",
            nbv_echo + "/unknown_depth_cells", dflt(0), in(0, 1000)}};

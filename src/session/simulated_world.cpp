@@ -35,10 +35,6 @@ void restrict_to_arm(const nbv::Reach& reach, const Eigen::Isometry3d& T_start, 
                                  gt.resolution_m(), threads);
 }
 
-}  // namespace
-
-namespace {
-
 /// No surface within `clearance_m` of `eye` along any of the 26 grid directions (nor is the
 /// eye inside a solid, from where the nearest faces are hit at once).
 bool clear_around(const sim::RayCaster& caster, const Eigen::Vector3d& eye, double clearance_m) {

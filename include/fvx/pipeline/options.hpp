@@ -39,7 +39,9 @@ std::vector<OptionSpec> accumulation_options(const std::string& echo);
 /// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
 void parse_accumulation(const Args& args, nbv::Config& config);
 
-/// --void-hull map|search-space (pipeline::Config::hull_in_bounds) and --unknown-depth N
+/// --void-hull map|search-space (pipeline::Config::hull_in_bounds), echoed at `echo`.
+OptionSpec void_hull_option(const std::string& echo);
+/// void_hull_option and --unknown-depth N
 /// (nbv::Config::unknown_depth_cells): two measured alternatives to the paper's void set
 /// and U, off by default (README, "Exploration over a scene suite").
 std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, const std::string& nbv_echo);
