@@ -75,12 +75,8 @@ const CommandSpec kNbvSpec = {
 namespace {
 
 std::pair<int, int> parse_rays(const Args& args) {
-  if (!args.has("rays")) return {80, 60};
-  const std::string text = args.get("rays");
-  const auto x = text.find('x');
-  if (x == std::string::npos) throw UsageError("--rays '" + text + "': expected COLSxROWS, e.g. 80x60");
-  return {int(parse_int_in(text.substr(0, x), "--rays columns", 1, 4096)),
-          int(parse_int_in(text.substr(x + 1), "--rays rows", 1, 4096))};
+  if (!args.has("rays")) return {kNbv.ray_cols, kNbv.ray_rows};
+  return pipeline::parse_cols_rows(args.get("rays"), "--rays");
 }
 
 /// The search's options: strategy, sensor, rays, sampling, refinement, polish, accumulation.

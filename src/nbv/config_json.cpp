@@ -8,6 +8,7 @@ Json config_json(const Config& c) {
   return {{"strategy", to_string(c.strategy)},
           {"sensor", io::camera_json(c.sensor)},
           {"rays", {c.ray_cols, c.ray_rows}},
+          {"coarse_rays", {c.coarse_ray_cols, c.coarse_ray_rows}},
           {"valid_poses", c.valid_poses},
           {"orientations_per_cell", c.orientations_per_cell},
           {"jitter_deg", c.jitter_deg},

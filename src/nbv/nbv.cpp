@@ -30,6 +30,8 @@ Strategy parse_strategy(const std::string& name, const std::string& what) {
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems = sensor.validate();
   if (ray_cols < 1 || ray_rows < 1) problems.push_back("ray_cols and ray_rows must be >= 1");
+  if (coarse_ray_cols < 0 || coarse_ray_rows < 0 || (coarse_ray_cols == 0) != (coarse_ray_rows == 0))
+    problems.push_back("coarse_ray_cols and coarse_ray_rows must both be >= 1, or both 0 (off)");
   if (valid_poses < 1) problems.push_back("valid_poses (N) must be >= 1");
   if (orientations_per_cell < 1) problems.push_back("orientations_per_cell must be >= 1");
   if (!(jitter_deg >= 0.0 && jitter_deg <= 90.0)) problems.push_back("jitter_deg must be in [0, 90]");
@@ -140,9 +142,9 @@ Result select_frontier_void(Search& s, const utility::Field& field, Result resul
   result.timing.sampling_s = t0.seconds();
 
   t0 = Stopwatch();
-  std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_rays());
   refine(s, poses, U, result);
-  result.views = s.rank(poses, U, &field.util_m3, &field);
+  result.views = s.rank(poses, U, &field.util_m3, &field, nullptr, s.screen_rays() != nullptr);
   result.timing.scoring_s = t0.seconds();
 
   if (!result.views.empty()) return result;

@@ -77,6 +77,9 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   any_hidden = !hidden_void_cells.empty();
   occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads);
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
+  if (config.strategy == Strategy::FrontierVoid && config.coarse_ray_cols > 0 &&
+      std::size_t(config.coarse_ray_cols) * std::size_t(config.coarse_ray_rows) < rays_sensor.size())
+    rays_coarse = viewpoints::ray_fan(config.sensor.intrinsics, config.coarse_ray_cols, config.coarse_ray_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
@@ -203,75 +206,101 @@ bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& prun
   return true;
 }
 
-std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
-                                       Result& result) const {
-  std::vector<viewpoints::FovScorer::Score> scores(poses.size());
+void Search::parallel(std::size_t n, const std::function<void(std::size_t, viewpoints::FovScorer::Workspace&)>& fn,
+                      const char* stage) const {
   const unsigned threads =
       std::max(1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
-                                      unsigned(std::max<std::size_t>(1, poses.size()))));
+                                      unsigned(std::max<std::size_t>(1, n))));
   if (workspaces.size() < threads) workspaces.resize(threads);
   std::atomic<std::size_t> next{0};
   auto work = [&](unsigned t) {
-    const bool report = t == 0;
-    viewpoints::FovScorer::Workspace& ws = workspaces[t];
-    for (std::size_t i = next++; i < poses.size(); i = next++) {
-      scores[i] = scorer.score(poses[i].T_world_sensor, ws);
-      if (report && config.progress && i % std::max<std::size_t>(256, poses.size() / 100) == 0)
-        config.progress("scoring poses", i, poses.size());
+    const bool report = t == 0 && stage && config.progress;
+    for (std::size_t i = next++; i < n; i = next++) {
+      fn(i, workspaces[t]);
+      if (report && i % std::max<std::size_t>(256, n / 100) == 0) config.progress(stage, i, n);
     }
   };
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (auto& t : pool) t.join();
+}
+
+std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
+                                       Result& result, const std::vector<Eigen::Vector3d>* rays) const {
+  std::vector<viewpoints::FovScorer::Score> scores(poses.size());
+  parallel(
+      poses.size(),
+      [&](std::size_t i, viewpoints::FovScorer::Workspace& ws) {
+        scores[i] = scorer.score(poses[i].T_world_sensor, ws, nullptr, rays);
+      },
+      "scoring poses");
   std::vector<std::size_t> seen(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     seen[i] = scores[i].targets_seen;
     result.pruning.seeing_nothing += seen[i] == 0;
     result.timing.cells_visited += scores[i].cells_visited;
   }
-  result.timing.rays += poses.size() * rays_sensor.size();
+  result.timing.rays += poses.size() * (rays ? rays->size() : scorer.ray_count());
   result.poses_scored += poses.size();
   return seen;
 }
 
+/// Screened ranks (Search::rank): besides config.top, this many more views (at most) are
+/// scored with the full fan, so that a view the coarse fan placed just below the top can
+/// still take its place.
+constexpr std::size_t kRescoredBeyondTop = 10;
+
+View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
+                      const utility::Field* field, viewpoints::FovScorer::Workspace& ws) const {
+  std::vector<std::size_t> seen;
+  View v;
+  v.T_world_sensor = pose.T_world_sensor;
+  v.pose_index = i;
+  if (pose.stepped_back_from != kNoCell) v.stepped_back_from = pose.stepped_back_from;
+  if (pose.polished_from != kNoCell) v.polished_from = pose.polished_from;
+  v.joints_rad = pose.joints_rad;
+  v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
+  for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));
+  std::sort(v.seen_void_cells.begin(), v.seen_void_cells.end());
+  std::map<int, std::size_t> per_void;
+  for (const std::size_t c : seen) ++per_void[void_label[c]];
+  v.voids_seen.assign(per_void.begin(), per_void.end());
+  std::stable_sort(v.voids_seen.begin(), v.voids_seen.end(),
+                   [](const auto& l, const auto& r) { return l.second > r.second; });
+  if (pose.cell != kNoCell) {
+    if (util_m3) v.accumulated_utility_m3 = (*util_m3)[pose.cell];
+    if (field)
+      for (const std::int32_t fv : field->contributors[pose.cell])
+        if (fv >= 0) v.utility_from.push_back(fv);
+  }
+  return v;
+}
+
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                                const core::LargeVector<double>* util_m3, const utility::Field* field,
-                               const std::function<bool(Pose&, std::size_t)>& accept) const {
+                               const std::function<bool(Pose&, std::size_t)>& accept, bool screened) const {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (score[i] > 0) order.push_back(i);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return score[l] > score[r]; });
-  std::vector<View> views;
-  if (workspaces.empty()) workspaces.resize(1);
-  viewpoints::FovScorer::Workspace& ws = workspaces.front();
-  std::vector<std::size_t> seen;
+  const std::size_t top = std::size_t(config.top);
+  const std::size_t wanted = top + (screened ? std::min(top, kRescoredBeyondTop) : 0);
+  std::vector<std::size_t> chosen;  // accepted, in score order
   for (const std::size_t i : order) {
-    if (views.size() >= std::size_t(config.top)) break;
-    Pose& pose = poses[i];
-    if (accept && !accept(pose, i)) continue;
-    View v;
-    v.T_world_sensor = pose.T_world_sensor;
-    v.pose_index = i;
-    if (pose.stepped_back_from != kNoCell) v.stepped_back_from = pose.stepped_back_from;
-    if (pose.polished_from != kNoCell) v.polished_from = pose.polished_from;
-    v.joints_rad = pose.joints_rad;
-    v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
-    for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));
-    std::sort(v.seen_void_cells.begin(), v.seen_void_cells.end());
-    std::map<int, std::size_t> per_void;
-    for (const std::size_t c : seen) ++per_void[void_label[c]];
-    v.voids_seen.assign(per_void.begin(), per_void.end());
-    std::stable_sort(v.voids_seen.begin(), v.voids_seen.end(),
-                     [](const auto& l, const auto& r) { return l.second > r.second; });
-    if (pose.cell != kNoCell) {
-      if (util_m3) v.accumulated_utility_m3 = (*util_m3)[pose.cell];
-      if (field)
-        for (const std::int32_t fv : field->contributors[pose.cell])
-          if (fv >= 0) v.utility_from.push_back(fv);
-    }
-    views.push_back(std::move(v));
+    if (chosen.size() >= wanted) break;
+    if (!accept || accept(poses[i], i)) chosen.push_back(i);
   }
+  std::vector<View> views(chosen.size());
+  parallel(chosen.size(), [&](std::size_t k, viewpoints::FovScorer::Workspace& ws) {
+    views[k] = describe(poses[chosen[k]], chosen[k], util_m3, field, ws);
+  });
+  if (screened) {  // the full fan's U decides; ties keep the coarse order
+    std::stable_sort(views.begin(), views.end(),
+                     [](const View& l, const View& r) { return l.void_cells_seen > r.void_cells_seen; });
+    while (!views.empty() && views.back().void_cells_seen == 0) views.pop_back();
+  }
+  if (views.size() > top) views.resize(top);
   return views;
 }
 

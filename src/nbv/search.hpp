@@ -67,14 +67,28 @@ struct Search {
 
   /// The targets each pose sees (U with the void scorer), on config.threads threads (the
   /// same on any count); counts the poses, rays, cells visited and poses seeing nothing.
+  /// `rays`: these in place of the scorer's own (screen_rays()).
   std::vector<std::size_t> score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
-                                 Result& result) const;
+                                 Result& result, const std::vector<Eigen::Vector3d>* rays = nullptr) const;
   /// Ranks by `score` (descending; ties: generation order), drops zeros and poses `accept`
-  /// refuses (when given; it may fill the joints), keeps config.top and describes each view:
-  /// void cells seen per cluster, contributors, joints.
+  /// refuses (when given; it may fill the joints), keeps config.top and describes each view
+  /// (U with the full fan, void cells seen per cluster, contributors, joints). `screened`:
+  /// `score` came from the coarse fan, so a few more than config.top views are described and
+  /// the full fan's U ranks them.
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
-                         const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
+                         const std::function<bool(Pose&, std::size_t)>& accept = nullptr, bool screened = false) const;
+  /// Pose `i` as a view: U and the void cells seen with the full fan, per cluster, the
+  /// field's value and contributors at its cell.
+  View describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
+                const utility::Field* field, viewpoints::FovScorer::Workspace& ws) const;
+  /// fn(i, a thread's workspace) for i in [0, n), on config.threads threads (0: all cores);
+  /// progress reported as `stage` when given.
+  void parallel(std::size_t n, const std::function<void(std::size_t, viewpoints::FovScorer::Workspace&)>& fn,
+                const char* stage = nullptr) const;
+  /// The coarse fan that screens the frontier-void strategy's poses (Config::coarse_ray_cols),
+  /// or null: every pose with the full fan.
+  const std::vector<Eigen::Vector3d>* screen_rays() const { return rays_coarse.empty() ? nullptr : &rays_coarse; }
 
   /// Scoring's per-thread scratch (a stamp per grid cell), kept across score() and rank()
   /// calls: a fresh one costs the kernel a grid's worth of zeroed pages (a third of the
@@ -106,6 +120,7 @@ struct Search {
   core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
   core::LargeVector<float> occupied_distance_sq;      ///< per grid cell: to the nearest occupied cell, cells²
   std::vector<Eigen::Vector3d> rays_sensor;
+  std::vector<Eigen::Vector3d> rays_coarse;  ///< screen_rays(); empty: off
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;
   /// Strategy Frontier: the largest frontier cluster (ties: the lower id), and per cell of it

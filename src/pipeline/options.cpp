@@ -1,6 +1,9 @@
 #include "fvx/pipeline/options.hpp"
 
+#include <tuple>
+
 #include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
 #include "fvx/io/camera_options.hpp"
 #include "fvx/scan/load.hpp"
 
@@ -78,12 +81,28 @@ std::vector<OptionSpec> accumulation_options(const std::string& echo) {
                                       "the paper's; minutes on large maps)", echo + "/accumulation"},
           {"utility-vectors", 0, "N", "sampled: trace about N utility vectors at most; under it the field is exact",
            echo + "/max_utility_vectors", dflt(nbv::Config{}.max_utility_vectors),
-           in(7, double(std::numeric_limits<long long>::max()))}};
+           in(7, double(std::numeric_limits<long long>::max()))},
+          {"coarse-rays", 0, "COLSxROWS", "frontier-void: screen the poses with this coarser fan of "
+                                          "field-of-view rays, then rank the best with the full fan (--rays); "
+                                          "off: every pose with the full fan", echo + "/coarse_rays",
+           dflt(nbv::Config{}.coarse_ray_cols) + "x" + dflt(nbv::Config{}.coarse_ray_rows)}};
+}
+
+std::pair<int, int> parse_cols_rows(const std::string& text, const std::string& option) {
+  const auto x = text.find('x');
+  if (x == std::string::npos) throw UsageError(option + " '" + text + "': expected COLSxROWS, e.g. 80x60");
+  return {int(parse_int_in(text.substr(0, x), option + " columns", 1, 4096)),
+          int(parse_int_in(text.substr(x + 1), option + " rows", 1, 4096))};
 }
 
 void parse_accumulation(const Args& args, nbv::Config& config) {
   if (args.has("accumulation")) config.accumulation = utility::parse_accumulation(args.get("accumulation"));
   args.read("utility-vectors", config.max_utility_vectors);
+  if (!args.has("coarse-rays")) return;
+  if (args.get("coarse-rays") == "off")
+    config.coarse_ray_cols = config.coarse_ray_rows = 0;
+  else
+    std::tie(config.coarse_ray_cols, config.coarse_ray_rows) = parse_cols_rows(args.get("coarse-rays"), "--coarse-rays");
 }
 
 double parse_target_size(const Args& args, double fallback) {

@@ -94,6 +94,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["clear_beyond_range"] = m.clear_beyond_range;
   j["accumulation"] = m.accumulation;
   j["max_utility_vectors"] = m.max_utility_vectors;
+  j["coarse_rays"] = {m.coarse_ray_cols, m.coarse_ray_rows};
   Json views = Json::array();
   for (const ManifestView& v : m.views) {
     Json jv = {{"view", v.view}, {"scan", v.scan}, {"map", v.map}, {"report", v.report},
@@ -137,6 +138,14 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
     const Json& v = j["max_utility_vectors"];
     if (!v.is_number_unsigned() || v.get<std::uint64_t>() < 7) r.fail("'max_utility_vectors' must be an integer >= 7");
     m.max_utility_vectors = v.get<std::uint64_t>();
+  }
+  if (j.contains("coarse_rays")) {
+    const Json& v = j["coarse_rays"];
+    const auto whole = [](const Json& n) { return n.is_number_unsigned() && n.get<std::uint64_t>() <= 4096; };
+    if (!v.is_array() || v.size() != 2 || !whole(v[0]) || !whole(v[1]) || (v[0] == 0) != (v[1] == 0))
+      r.fail("'coarse_rays' must be [cols, rows], each in [1, 4096], or [0, 0]");
+    m.coarse_ray_cols = v[0].get<int>();
+    m.coarse_ray_rows = v[1].get<int>();
   }
 }
 
@@ -240,6 +249,8 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.clear_beyond_range = pc.clear_beyond_range;
   m.accumulation = utility::to_string(nc.accumulation);
   m.max_utility_vectors = nc.max_utility_vectors;
+  m.coarse_ray_cols = nc.coarse_ray_cols;
+  m.coarse_ray_rows = nc.coarse_ray_rows;
   return m;
 }
 

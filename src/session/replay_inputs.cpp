@@ -28,6 +28,8 @@ void apply_manifest(const Manifest& m, const std::string& dir, ReplayConfig& con
   nc.unknown_depth_cells = m.unknown_depth_cells;
   nc.accumulation = utility::parse_accumulation(m.accumulation, dir + "/manifest.json: accumulation");
   nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
+  nc.coarse_ray_cols = m.coarse_ray_cols;
+  nc.coarse_ray_rows = m.coarse_ray_rows;
 }
 
 }  // namespace

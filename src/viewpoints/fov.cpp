@@ -58,7 +58,7 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
 }
 
 FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Workspace& ws,
-                                  std::vector<std::size_t>* seen) const {
+                                  std::vector<std::size_t>* seen, const std::vector<Eigen::Vector3d>* rays) const {
   if (ws.stamp.size() != grid_.cell_count()) {
     ws.stamp.assign(grid_.cell_count(), 0);
     ws.current = 0;
@@ -73,7 +73,7 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
   const Eigen::Vector3d origin = T_world_sensor.translation();
   const Eigen::Matrix3d R = T_world_sensor.linear();
   const Eigen::Vector3d axis = R.col(2);
-  for (const Eigen::Vector3d& ray : rays_sensor_) {
+  for (const Eigen::Vector3d& ray : rays ? *rays : rays_sensor_) {
     // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
     ws.ray_targets.clear();
     const double length = ray.norm();  // per metre of depth

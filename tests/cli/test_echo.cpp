@@ -107,7 +107,7 @@ TEST(Echo, EveryCommandsReportHoldsEveryOptionsEffectiveValue) {
 
   args = "m.ot" + arm + " --top 3 --poses 20 --orientations 3 --separation 0.1 --refine 2 --polish 1 --climb 1 "
          "--jitter 4 --clearance 0.05 --rolls 3 --min-fit-score 0.6 --seed 2 --threads 1 --target-size 0.1 "
-         "--utility-vectors 100000 --depth-min 0.4 --depth-max 3.5" + camera;
+         "--utility-vectors 100000 --coarse-rays 20x15 --depth-min 0.4 --depth-max 3.5" + camera;
   expect_echoes(run("nbv", args), "nbv", args);
 
   args = scene + arm + " --max-views 2 --resolution 0.05 --seed 2 --threads 1 --target-size 0.1 "

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
 
 #include "cli_support.hpp"
@@ -156,6 +157,8 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
       {"nbv box.ot --no-capmap --accumulation fast", 2, "--accumulation"},
       {"nbv box.ot --no-capmap --utility-vectors 3", 2, "--utility-vectors"},
       {"nbv box.ot --no-capmap --utility-vectors many", 2, "--utility-vectors"},
+      {"nbv box.ot --no-capmap --coarse-rays 0x30", 2, "--coarse-rays"},
+      {"nbv box.ot --no-capmap --coarse-rays coarse", 2, "--coarse-rays"},
       {"nbv missing.ot --no-capmap", 1, "missing.ot"},
       {"nbv s0.pcd --no-capmap", 1, "s0.pcd"},
   };
@@ -190,6 +193,27 @@ TEST(CliNbv, AccumulationModesAgreeUnderTheBudget) {
   EXPECT_LT(few["results"]["utility_vectors"].get<std::size_t>(), vectors / 5);
   EXPECT_EQ(few["results"]["exact_utility_vectors"], e["results"]["exact_utility_vectors"]);
   EXPECT_FALSE(few["results"]["views"].empty());
+}
+
+// Screening is echoed; off, every pose is scored with the full fan (more rays traced), and
+// either way the reported U is the full fan's, so the best view's U is comparable.
+TEST(CliNbv, CoarseRaysAreEchoedAndOffScoresEveryPoseWithTheFullFan) {
+  const TempDir dir;
+  make_closed_box_map(dir);
+  std::map<std::string, json> runs;
+  for (const std::string flags : {"", "--coarse-rays off", "--coarse-rays 20x15"}) {
+    const RunResult r = run_fvx(dir, "nbv box.ot --no-capmap --timing " + flags + " -o v.json");
+    ASSERT_EQ(r.status, 0) << flags << ": " << r.err;
+    runs[flags] = json::parse(slurp(dir / "v.json"));
+  }
+  EXPECT_EQ(runs[""]["config"]["coarse_rays"], json({40, 30}));
+  EXPECT_EQ(runs["--coarse-rays off"]["config"]["coarse_rays"], json({0, 0}));
+  EXPECT_EQ(runs["--coarse-rays 20x15"]["config"]["coarse_rays"], json({20, 15}));
+  EXPECT_LT(runs[""]["results"]["timing_s"]["rays"].get<double>(),
+            runs["--coarse-rays off"]["results"]["timing_s"]["rays"].get<double>());
+  for (const auto& [flags, report] : runs)
+    EXPECT_GE(report["results"]["best_void_cells_seen"].get<double>(),
+              0.8 * runs["--coarse-rays off"]["results"]["best_void_cells_seen"].get<double>()) << flags;
 }
 
 // The real slambook map, free-flying: the top pose is a free cell, and an independent cast

@@ -71,7 +71,7 @@ TEST(CliReplay, ATargetSizeIsRecordedAndReplayed) {
 TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const TempDir dir;
   const RunResult e = run_fvx(dir, "explore" + kScene + kArm +
-                                       " --void-hull search-space --unknown-depth 1 --max-views 3 --format json -o session");
+                                       " --void-hull search-space --unknown-depth 1 --coarse-rays 20x15 --max-views 3 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["hull_in_bounds"], true);
@@ -79,9 +79,12 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const session::Manifest m = session::read_manifest(dir / "session");
   EXPECT_TRUE(m.hull_in_bounds);
   EXPECT_EQ(m.unknown_depth_cells, 1);
+  EXPECT_EQ(m.coarse_ray_cols, 20);
+  EXPECT_EQ(m.coarse_ray_rows, 15);
   const RunResult r = run_fvx(dir, "replay session -o out --format json");
   ASSERT_EQ(r.status, 0) << r.err;
   const json replayed = json::parse(r.out);
+  EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["coarse_rays"], json({20, 15}));
   ASSERT_EQ(replayed["results"]["rows"].size(), explored["results"]["rows"].size());
   for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
     const json& a = explored["results"]["rows"][i];
@@ -95,7 +98,7 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   ASSERT_EQ(whole.status, 0) << whole.err;
   EXPECT_GT(json::parse(whole.out)["results"]["rows"][0]["map_void_cells"].get<int>(),
             explored["results"]["rows"][0]["map_void_cells"].get<int>());
-  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1"}) {
+  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1", "--coarse-rays 20"}) {
     const RunResult b = run_fvx(dir, "replay session -o out3 " + bad);
     EXPECT_EQ(b.status, 2) << bad;
     EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << b.err;

@@ -49,6 +49,13 @@ struct Config {
   io::DepthCamera sensor;             ///< intrinsics and depths; depth_max_m is s_r. Default Kinect v1
   int ray_cols = 80;                  ///< field-of-view rays across the image (decimated pixel grid)
   int ray_rows = 60;                  ///< … and down it
+  /// Screening (not in the paper): the frontier-void strategy scores its sampled, stepped-
+  /// back and rolled poses with this coarser fan, then scores the best of them with the full
+  /// fan (ray_cols × ray_rows) to rank the views it reports. 0 × 0: every pose with the
+  /// full fan. A view's U counts what its rays cross, so a quarter of the rays counts fewer
+  /// cells, yet ranks poses alike (README, "Screening").
+  int coarse_ray_cols = 40;
+  int coarse_ray_rows = 30;
   int valid_poses = 50;               ///< N: the search stops after this many valid poses (paper: 50)
   int orientations_per_cell = 2;      ///< orientations sampled at each candidate cell
   double jitter_deg = 5.0;            ///< tilt of sampled axes around their target, degrees

@@ -3,6 +3,7 @@
 /// The options of the step's configs that several commands share, declared next to the
 /// configs they set: their table rows (with default and range) and their parsing.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fvx/core/options.hpp"
@@ -34,10 +35,14 @@ std::vector<OptionSpec> target_size_options(const std::string& echo);
 /// The value of --target-size if given, else `fallback`.
 double parse_target_size(const Args& args, double fallback);
 
-/// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp).
+/// --accumulation exact|sampled and --utility-vectors N (utility/utility.hpp), and
+/// --coarse-rays COLSxROWS|off (nbv::Config::coarse_ray_cols): the search's speed settings.
 std::vector<OptionSpec> accumulation_options(const std::string& echo);
-/// Sets config.accumulation and config.max_utility_vectors from them; UsageError when bad.
+/// Sets config.accumulation, max_utility_vectors and the coarse fan from them; UsageError
+/// when bad.
 void parse_accumulation(const Args& args, nbv::Config& config);
+/// "COLSxROWS" (each 1 to 4096) as {cols, rows}; UsageError naming `option` otherwise.
+std::pair<int, int> parse_cols_rows(const std::string& text, const std::string& option);
 
 /// --void-hull map|search-space (pipeline::Config::hull_in_bounds), echoed at `echo`.
 OptionSpec void_hull_option(const std::string& echo);

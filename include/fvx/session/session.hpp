@@ -66,6 +66,9 @@ struct Manifest {
   /// "exact", as every session before the sampled accumulation was recorded.
   std::string accumulation = "exact";
   std::uint64_t max_utility_vectors = std::uint64_t(1) << 21;
+  /// The coarse fan that screened poses (nbv::Config::coarse_ray_cols, rows). Absent: 0 × 0
+  /// (off), as every session before screening was searched.
+  int coarse_ray_cols = 0, coarse_ray_rows = 0;
   std::vector<ManifestView> views;
 };
 

@@ -50,9 +50,10 @@ class FovScorer {
     std::uint64_t cells_visited = 0;    ///< cells the rays walked (for the cells/s figure)
   };
   /// Traces every ray from `T_world_sensor`; when `seen` is given, it receives the grid
-  /// indices of the target cells seen, ascending.
-  Score score(const Eigen::Isometry3d& T_world_sensor, Workspace& workspace,
-              std::vector<std::size_t>* seen = nullptr) const;
+  /// indices of the target cells seen, ascending. `rays` (sensor frame, z = 1): these in
+  /// place of the scorer's own, e.g. a coarser fan that screens poses.
+  Score score(const Eigen::Isometry3d& T_world_sensor, Workspace& workspace, std::vector<std::size_t>* seen = nullptr,
+              const std::vector<Eigen::Vector3d>* rays = nullptr) const;
 
   const map::DenseGrid& grid() const { return grid_; }
   std::size_t ray_count() const { return rays_sensor_.size(); }
