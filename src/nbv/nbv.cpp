@@ -144,7 +144,7 @@ Result select_frontier_void(Search& s, const utility::Field& field, Result resul
   t0 = Stopwatch();
   std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_rays());
   refine(s, poses, U, result);
-  result.views = s.rank(poses, U, &field.util_m3, &field, nullptr, s.screen_rays() != nullptr);
+  result.views = s.rank(poses, U, &field.util_m3, &field);
   result.timing.scoring_s = t0.seconds();
 
   if (!result.views.empty()) return result;

@@ -279,7 +279,8 @@ View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<d
 
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                                const core::LargeVector<double>* util_m3, const utility::Field* field,
-                               const std::function<bool(Pose&, std::size_t)>& accept, bool screened) const {
+                               const std::function<bool(Pose&, std::size_t)>& accept) const {
+  const bool screened = screen_rays() != nullptr;  // `score` came from the coarse fan
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (score[i] > 0) order.push_back(i);

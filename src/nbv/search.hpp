@@ -72,12 +72,12 @@ struct Search {
                                  Result& result, const std::vector<Eigen::Vector3d>* rays = nullptr) const;
   /// Ranks by `score` (descending; ties: generation order), drops zeros and poses `accept`
   /// refuses (when given; it may fill the joints), keeps config.top and describes each view
-  /// (U with the full fan, void cells seen per cluster, contributors, joints). `screened`:
-  /// `score` came from the coarse fan, so a few more than config.top views are described and
-  /// the full fan's U ranks them.
+  /// (U with the full fan, void cells seen per cluster, contributors, joints). Screened
+  /// (screen_rays(): `score` came from the coarse fan), a few more than config.top views are
+  /// described and the full fan's U ranks them.
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
-                         const std::function<bool(Pose&, std::size_t)>& accept = nullptr, bool screened = false) const;
+                         const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
   /// Pose `i` as a view: U and the void cells seen with the full fan, per cluster, the
   /// field's value and contributors at its cell.
   View describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
