@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <map>
 #include <random>
 #include <thread>
 
@@ -261,11 +260,17 @@ View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<d
   if (pose.polished_from != kNoCell) v.polished_from = pose.polished_from;
   v.joints_rad = pose.joints_rad;
   v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
+  // `seen` ascends by grid index, which orders cells as keys do: (z, y, x).
+  v.seen_void_cells.reserve(seen.size());
   for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));
-  std::sort(v.seen_void_cells.begin(), v.seen_void_cells.end());
-  std::map<int, std::size_t> per_void;
-  for (const std::size_t c : seen) ++per_void[void_label[c]];
-  v.voids_seen.assign(per_void.begin(), per_void.end());
+  std::vector<std::size_t> per_void;  // by void id (labels of seen cells are ids >= 0)
+  for (const std::size_t c : seen) {
+    const auto id = std::size_t(void_label[c]);
+    if (id >= per_void.size()) per_void.resize(id + 1, 0);
+    ++per_void[id];
+  }
+  for (std::size_t id = 0; id < per_void.size(); ++id)
+    if (per_void[id] > 0) v.voids_seen.emplace_back(int(id), per_void[id]);
   std::stable_sort(v.voids_seen.begin(), v.voids_seen.end(),
                    [](const auto& l, const auto& r) { return l.second > r.second; });
   if (pose.cell != kNoCell) {

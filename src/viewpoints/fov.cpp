@@ -59,15 +59,9 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
 
 FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Workspace& ws,
                                   std::vector<std::size_t>* seen, const std::vector<Eigen::Vector3d>* rays) const {
-  if (ws.stamp.size() != grid_.cell_count()) {
-    ws.stamp.assign(grid_.cell_count(), 0);
-    ws.current = 0;
-  }
-  if (++ws.current == 0) {  // wrapped after 2^32 poses: start the stamps again
-    std::fill(ws.stamp.begin(), ws.stamp.end(), 0);
-    ws.current = 1;
-  }
-  const std::uint32_t now = ws.current;
+  const std::size_t words = (grid_.cell_count() + 63) / 64;
+  if (ws.counted_bits.size() != words) ws.counted_bits.assign(words, 0);
+  auto counted = [&ws](std::size_t i) { return (ws.counted_bits[i >> 6] >> (i & 63)) & 1; };
   Score s;
   if (seen) seen->clear();
   const Eigen::Vector3d origin = T_world_sensor.translation();
@@ -92,7 +86,7 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
       }
       // The sensor measures nothing nearer than the minimum depth, so it cannot promise
       // to reveal a target there (its cell centre's depth).
-      if ((cell & kTarget) && ws.stamp[i] != now &&
+      if ((cell & kTarget) && !counted(i) &&
           (count_from_m_ <= 0.0 || (grid_.center_of(grid_.key(i)) - origin).dot(axis) >= count_from_m_))
         ws.ray_targets.push_back(i);
       return true;
@@ -102,13 +96,18 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
         (grid_.center_of(grid_.key(hit)) - origin).dot(axis) < depth_min_m_)
       continue;
     for (const std::size_t i : ws.ray_targets) {
-      if (ws.stamp[i] == now) continue;  // a ray may cross a cell twice only by rounding; count once
-      ws.stamp[i] = now;
-      ++s.targets_seen;
-      if (seen) seen->push_back(i);
+      if (counted(i)) continue;  // a ray may cross a cell twice only by rounding; count once
+      ws.counted_bits[i >> 6] |= std::uint64_t(1) << (i & 63);
+      ws.counted.push_back(i);
     }
   }
-  if (seen) std::sort(seen->begin(), seen->end());
+  s.targets_seen = ws.counted.size();
+  for (const std::size_t i : ws.counted) ws.counted_bits[i >> 6] = 0;  // clean for the next pose
+  if (seen) {
+    seen->assign(ws.counted.begin(), ws.counted.end());
+    std::sort(seen->begin(), seen->end());
+  }
+  ws.counted.clear();
   return s;
 }
 

@@ -38,10 +38,12 @@ class FovScorer {
   FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t> target, std::vector<Eigen::Vector3d> rays_sensor,
             double depth_max_m, double depth_min_m = 0.0, bool near_targets_count = true);
 
-  /// Scratch space of one thread: a visit stamp per grid cell, so each cell counts once.
+  /// Scratch space of one thread: a bit per grid cell, set for the targets the pose being
+  /// scored has counted, so each counts once (a bit, not a stamp per cell: on real maps the
+  /// bits stay in the cache, stamps did not), cleared again through `counted`.
   struct Workspace {
-    core::LargeVector<std::uint32_t> stamp;
-    std::uint32_t current = 0;
+    std::vector<std::uint64_t> counted_bits;
+    std::vector<std::size_t> counted;      ///< the cells whose bit is set
     std::vector<std::size_t> ray_targets;  ///< targets of the ray being traced
   };
 
