@@ -45,14 +45,27 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
       count_from_m_(near_targets_count ? 0.0 : depth_min_m) {
   FVX_ASSERT(cells_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
   const std::uint8_t* states = grid_.states();
-  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(grid_.resolution_m());
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    if (cells_[i]) {
-      const Eigen::Vector3d c = grid_.center_of(grid_.key(i));
-      target_box_m_.extend(c - margin);
-      target_box_m_.extend(c + margin);
-    }
-    cells_[i] = std::uint8_t(states[i] | (cells_[i] ? kTarget : 0));
+  // The targets' extent in cells, by the loop's own coordinates: key(i) divides, and real
+  // maps have millions of void cells.
+  const Eigen::Vector3i n = grid_.size();
+  Eigen::Vector3i lo = n, hi = Eigen::Vector3i::Constant(-1);
+  std::size_t i = 0;
+  for (int z = 0; z < n.z(); ++z)
+    for (int y = 0; y < n.y(); ++y)
+      for (int x = 0; x < n.x(); ++x, ++i) {
+        if (cells_[i]) {
+          lo = lo.cwiseMin(Eigen::Vector3i(x, y, z));
+          hi = hi.cwiseMax(Eigen::Vector3i(x, y, z));
+        }
+        cells_[i] = std::uint8_t(states[i] | (cells_[i] ? kTarget : 0));
+      }
+  if (hi.x() >= 0) {
+    auto key_at = [&](const Eigen::Vector3i& c) {
+      const map::VoxelKey& m = grid_.min_key();
+      return map::VoxelKey{std::uint16_t(m.x + c.x()), std::uint16_t(m.y + c.y()), std::uint16_t(m.z + c.z())};
+    };
+    const Eigen::Vector3d margin = Eigen::Vector3d::Constant(grid_.resolution_m());
+    target_box_m_ = Eigen::AlignedBox3d(grid_.center_of(key_at(lo)) - margin, grid_.center_of(key_at(hi)) + margin);
   }
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
