@@ -90,9 +90,8 @@ struct Search {
   /// or null: every pose with the full fan.
   const std::vector<Eigen::Vector3d>* screen_rays() const { return rays_coarse.empty() ? nullptr : &rays_coarse; }
 
-  /// Scoring's per-thread scratch (a stamp per grid cell), kept across score() and rank()
-  /// calls: a fresh one costs the kernel a grid's worth of zeroed pages (a third of the
-  /// search's CPU on a 17 M-cell grid). Its stamps never repeat, so no call clears it.
+  /// Scoring's per-thread scratch (a bit per grid cell), kept across score() and rank()
+  /// calls: a fresh one costs the kernel zeroed pages. Each score() leaves its bits clear.
   mutable std::vector<viewpoints::FovScorer::Workspace> workspaces;
 
   bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)

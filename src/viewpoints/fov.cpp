@@ -76,7 +76,6 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
   if (ws.counted_bits.size() != words) ws.counted_bits.assign(words, 0);
   auto counted = [&ws](std::size_t i) { return (ws.counted_bits[i >> 6] >> (i & 63)) & 1; };
   Score s;
-  if (seen) seen->clear();
   const Eigen::Vector3d origin = T_world_sensor.translation();
   const Eigen::Matrix3d R = T_world_sensor.linear();
   const Eigen::Vector3d axis = R.col(2);

@@ -39,8 +39,8 @@ class FovScorer {
             double depth_max_m, double depth_min_m = 0.0, bool near_targets_count = true);
 
   /// Scratch space of one thread: a bit per grid cell, set for the targets the pose being
-  /// scored has counted, so each counts once (a bit, not a stamp per cell: on real maps the
-  /// bits stay in the cache, stamps did not), cleared again through `counted`.
+  /// scored has counted, so each counts once (a bit stays in the cache on real maps, where a
+  /// 32-bit stamp per cell did not), cleared again through `counted`.
   struct Workspace {
     std::vector<std::uint64_t> counted_bits;
     std::vector<std::size_t> counted;      ///< the cells whose bit is set
