@@ -79,17 +79,22 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
   const Eigen::Vector3d origin = T_world_sensor.translation();
   const Eigen::Matrix3d R = T_world_sensor.linear();
   const Eigen::Vector3d axis = R.col(2);
+  const std::optional<map::VoxelKey> origin_cell = grid_.cell_of(origin);
+  if (!origin_cell) {  // outside the grid: every walk ends where it starts
+    if (seen) seen->clear();
+    return s;
+  }
   for (const Eigen::Vector3d& ray : rays ? *rays : rays_sensor_) {
     // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
     ws.ray_targets.clear();
     const double length = ray.norm();  // per metre of depth
-    const Eigen::Vector3d d = R * ray;   // the walk takes it unit, as the box test does
-    const double exit_m = ray_box_exit(target_box_m_, origin, d.normalized(), depth_max_m_ * length);
+    const Eigen::Vector3d d = (R * ray).normalized();  // the box test and the walk take it unit
+    const double exit_m = ray_box_exit(target_box_m_, origin, d, depth_max_m_ * length);
     if (exit_m < 0.0) continue;  // it crosses no target
     const double range_m = std::max(exit_m, std::min(depth_min_m_, depth_max_m_) * length);
     std::size_t hit = std::size_t(-1);
     int unknown = 0;
-    grid_.walk_cells(cells_.data(), origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
+    grid_.walk_unit(cells_.data(), *origin_cell, origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;
       if (map::VoxelState(cell & 3) == map::VoxelState::Occupied ||
           (unknown_depth_ > 0 && map::VoxelState(cell & 3) == map::VoxelState::Unknown && ++unknown > unknown_depth_)) {

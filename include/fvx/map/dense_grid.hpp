@@ -78,6 +78,14 @@ class DenseGrid {
   template <typename Visit>
   RayOutcome walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m, const Eigen::Vector3d& direction,
                         double max_range_m, Visit&& visit) const;
+  /// walk_cells from `origin_m` in cell `k` (contains(k); the cell walk_cells would find)
+  /// along a unit direction `d`, the same walk step for step. Algorithm 1 (rays from a
+  /// frontier cell) and the field-of-view scorer (rays from a pose) know the origin's cell
+  /// and have the unit direction for their box tests: this skips the cell look-up and the
+  /// second normalisation, per ray.
+  template <typename Visit>
+  RayOutcome walk_unit(const std::uint8_t* cells, const VoxelKey& k, const Eigen::Vector3d& origin_m,
+                       const Eigen::Vector3d& d, double max_range_m, Visit&& visit) const;
   /// The raw states (a VoxelState per byte), in index order.
   const std::uint8_t* states() const { return states_.data(); }
 
@@ -98,14 +106,22 @@ core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState s
 template <typename Visit>
 RayOutcome DenseGrid::walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m,
                                  const Eigen::Vector3d& direction, double max_range_m, Visit&& visit) const {
-  const double R = resolution_m_;
   // Cell of the origin on the map's key grid (as OctoMap: floor(coordinate / R) + 32768).
   int cell[3];
-  for (int a = 0; a < 3; ++a) cell[a] = int(std::floor(origin_m[a] * (1.0 / R))) + 32768;
+  for (int a = 0; a < 3; ++a) cell[a] = int(std::floor(origin_m[a] * (1.0 / resolution_m_))) + 32768;
   const int lo[3] = {min_.x, min_.y, min_.z};
   for (int a = 0; a < 3; ++a)
     if (cell[a] < lo[a] || cell[a] - lo[a] >= size_[a]) return RayOutcome::OutOfBounds;
-  const Eigen::Vector3d d = direction.normalized();
+  const VoxelKey k{std::uint16_t(cell[0]), std::uint16_t(cell[1]), std::uint16_t(cell[2])};
+  return walk_unit(cells, k, origin_m, direction.normalized(), max_range_m, visit);
+}
+
+template <typename Visit>
+RayOutcome DenseGrid::walk_unit(const std::uint8_t* cells, const VoxelKey& k, const Eigen::Vector3d& origin_m,
+                                const Eigen::Vector3d& d, double max_range_m, Visit&& visit) const {
+  const double R = resolution_m_;
+  const int cell[3] = {k.x, k.y, k.z};
+  const int lo[3] = {min_.x, min_.y, min_.z};
   int step[3];
   double t_max[3], t_delta[3];
   std::int64_t stride[3] = {1, size_.x(), std::int64_t(size_.x()) * size_.y()};

@@ -208,6 +208,47 @@ TEST(SampledUtility, InsideTheReadBoxTheFieldIsTheWholeField) {
   }
 }
 
+// The exact field against Algorithm 1 written plainly: every vector adds u_i (in whole
+// cells, as the field counts) to every free cell it passes, and each cell keeps the four
+// frontier-voids of largest utility among those passing it.
+TEST(SampledUtility, TheExactFieldIsAlgorithmOneVectorByVector) {
+  const map::DenseGrid& grid = *crates().grid;
+  const frontier_voids::Analysis& a = crates().a;
+  const double R = grid.resolution_m();
+  std::vector<double> util_cells(grid.cell_count(), 0.0);
+  std::vector<std::vector<int>> passing(grid.cell_count());
+  for (std::size_t i = 0; i < a.frontier_voids.size(); ++i) {
+    const auto& fv = a.frontier_voids[i];
+    if (fv.enclosed() || !(fv.utility_m3 > 0)) continue;
+    const double u_cells = std::round(fv.utility_m3 / (R * R * R));
+    std::vector<std::size_t> passes(grid.cell_count(), 0);
+    for (const int id : fv.frontier_ids)
+      for (const map::VoxelKey& f : a.frontier_clusters[std::size_t(id)].cells) {
+        if (!grid.contains(f)) continue;
+        for (const Eigen::Vector3d& c : a.void_clusters[std::size_t(fv.void_id)].corners()) {
+          const Eigen::Vector3d dir = grid.center_of(f) - c;
+          if (dir.norm() < 1e-9) continue;
+          grid.walk(grid.center_of(f), dir, Config{}.sensor_range_m, [&](std::size_t k, map::VoxelState s) {
+            if (s != map::VoxelState::Free) return false;
+            util_cells[k] += u_cells;
+            if (passes[k]++ == 0) passing[k].push_back(int(i));
+            return true;
+          });
+        }
+      }
+  }
+  const Field field = run(Accumulation::Exact, 7, 1, 2);
+  for (std::size_t k = 0; k < grid.cell_count(); ++k) {
+    ASSERT_NEAR(field.util_m3[k], util_cells[k] * R * R * R, 1e-9 * field.max_m3) << "cell " << k;
+    std::vector<int>& by_utility = passing[k];
+    std::stable_sort(by_utility.begin(), by_utility.end(), [&](int l, int r) {
+      return a.frontier_voids[std::size_t(l)].utility_m3 > a.frontier_voids[std::size_t(r)].utility_m3;
+    });
+    by_utility.resize(kContributors, -1);
+    ASSERT_EQ(std::vector<int>(field.contributors[k].begin(), field.contributors[k].end()), by_utility) << k;
+  }
+}
+
 TEST(SampledUtility, NamesAndBadConfigs) {
   EXPECT_EQ(parse_accumulation("exact"), Accumulation::Exact);
   EXPECT_EQ(parse_accumulation("sampled"), Accumulation::Sampled);

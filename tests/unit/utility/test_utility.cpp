@@ -13,26 +13,34 @@ map::VoxelKey key(int x, int y, int z) {
   return {std::uint16_t(32768 + x), std::uint16_t(32768 + y), std::uint16_t(32768 + z)};
 }
 
-// A line of free cells along +x from x = 0 to 9, an occupied cell at x = 10, unknown
-// elsewhere. One void cluster: a single cell at x = −1 (so all its corners lie at the void,
-// −x of the frontier); one frontier cluster: the cell at x = 0.
-TEST(Utility, RaysLeaveTheVoidThroughTheFrontierAndStopAtTheFirstNonFreeCell) {
-  map::OccupancyMap map(0.1);
-  for (int x = 0; x < 10; ++x) map.set_state(key(x, 0, 0), map::VoxelState::Free);
-  map.set_state(key(10, 0, 0), map::VoxelState::Occupied);
+/// A line of free cells along +x from x = 0 to `wall` − 1, an occupied cell at x = `wall`,
+/// unknown elsewhere. One void cluster: a single cell at x = −1 (so all its corners lie at the
+/// void, −x of the frontier); one frontier cluster: the cells x = 0 … `frontier` − 1.
+struct Line {
+  map::OccupancyMap map{0.1};
   frontier_voids::Analysis a;
-  a.bounds_m = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(2, 1, 1));
-  voids::VoidCluster v;
-  v.cells = {key(-1, 0, 0)};
-  v.mean_m = map.center_of(key(-1, 0, 0));
-  v.semi_axes_m = Eigen::Vector3d::Constant(1e-4);  // corners within the void cell
-  v.volume_m3 = 0.001;
-  a.void_clusters = {v};
-  frontiers::Cluster f;
-  f.cells = {key(0, 0, 0)};
-  a.frontier_clusters = {f};
-  a.frontier_voids = {{0, {0}, v.volume_m3}};
-  const map::DenseGrid grid(map, a.bounds_m);
+  Line(int wall, int frontier) {
+    for (int x = 0; x < wall; ++x) map.set_state(key(x, 0, 0), map::VoxelState::Free);
+    map.set_state(key(wall, 0, 0), map::VoxelState::Occupied);
+    a.bounds_m = Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(0.1 * wall + 1, 1, 1));
+    voids::VoidCluster v;
+    v.cells = {key(-1, 0, 0)};
+    v.mean_m = map.center_of(key(-1, 0, 0));
+    v.semi_axes_m = Eigen::Vector3d::Constant(1e-4);  // corners within the void cell
+    v.volume_m3 = 0.001;
+    a.void_clusters = {v};
+    frontiers::Cluster f;
+    for (int x = 0; x < frontier; ++x) f.cells.push_back(key(x, 0, 0));
+    a.frontier_clusters = {f};
+    a.frontier_voids = {{0, {0}, v.volume_m3}};
+  }
+};
+
+// The line with a wall at x = 10 and one frontier cell, x = 0.
+TEST(Utility, RaysLeaveTheVoidThroughTheFrontierAndStopAtTheFirstNonFreeCell) {
+  const Line line(10, 1);
+  const frontier_voids::Analysis& a = line.a;
+  const map::DenseGrid grid(line.map, a.bounds_m);
   Config config;
   config.sensor_range_m = 4.0;
   const Field field = accumulate(grid, a, config);
@@ -59,6 +67,30 @@ TEST(Utility, RaysLeaveTheVoidThroughTheFrontierAndStopAtTheFirstNonFreeCell) {
   EXPECT_EQ(far.vectors, 7u);
   config.min_range_m = 4.0;  // not below s_r
   EXPECT_FALSE(config.validate().empty());
+}
+
+// The same line with sixty frontier cells, x = 0…59, and the wall at x = 70: the rays from
+// every frontier cell run +x to the wall, so cell x is passed 7·min(x + 1, 60) times by the
+// one frontier-void, up to 420. The accumulation counts a frontier-void's passes per cell in
+// a byte that spills past 255; the field must still be the full count, and the frontier-void
+// a cell's one contributor.
+TEST(Utility, ACellPassedMoreThan255TimesByOneFrontierVoidGetsEveryPass) {
+  const Line line(70, 60);
+  const map::DenseGrid grid(line.map, line.a.bounds_m);
+  Config config;
+  config.accumulation = Accumulation::Exact;
+  config.sensor_range_m = 10.0;
+  for (const unsigned threads : {1u, 2u}) {
+    config.threads = threads;
+    const Field field = accumulate(grid, line.a, config);
+    EXPECT_EQ(field.vectors, 7u * 60u);
+    for (int x = 0; x < 70; ++x) {
+      const std::size_t i = grid.index(key(x, 0, 0));
+      EXPECT_NEAR(field.util_m3[i], 7 * std::min(x + 1, 60) * 0.001, 1e-12) << "x = " << x;
+      EXPECT_EQ(field.contributors[i], (std::array<std::int32_t, kContributors>{0, -1, -1, -1})) << "x = " << x;
+    }
+    EXPECT_EQ(field.cells, 70u);
+  }
 }
 
 // Within the box's column (its footprint, floor to 1.2 m) the only void is the interior. Its
