@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <thread>
 
@@ -251,8 +252,8 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
 constexpr std::size_t kRescoredBeyondTop = 10;
 
 View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
-                      const utility::Field* field, viewpoints::FovScorer::Workspace& ws) const {
-  std::vector<std::size_t> seen;
+                      const utility::Field* field, viewpoints::FovScorer::Workspace& ws,
+                      std::vector<std::size_t>& seen) const {
   View v;
   v.T_world_sensor = pose.T_world_sensor;
   v.pose_index = i;
@@ -260,6 +261,16 @@ View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<d
   if (pose.polished_from != kNoCell) v.polished_from = pose.polished_from;
   v.joints_rad = pose.joints_rad;
   v.void_cells_seen = void_scorer->score(pose.T_world_sensor, ws, &seen).targets_seen;
+  if (pose.cell != kNoCell) {
+    if (util_m3) v.accumulated_utility_m3 = (*util_m3)[pose.cell];
+    if (field)
+      for (const std::int32_t fv : field->contributors[pose.cell])
+        if (fv >= 0) v.utility_from.push_back(fv);
+  }
+  return v;
+}
+
+void Search::name_seen(View& v, const std::vector<std::size_t>& seen) const {
   // `seen` ascends by grid index, which orders cells as keys do: (z, y, x).
   v.seen_void_cells.reserve(seen.size());
   for (const std::size_t c : seen) v.seen_void_cells.push_back(grid.key(c));
@@ -273,13 +284,6 @@ View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<d
     if (per_void[id] > 0) v.voids_seen.emplace_back(int(id), per_void[id]);
   std::stable_sort(v.voids_seen.begin(), v.voids_seen.end(),
                    [](const auto& l, const auto& r) { return l.second > r.second; });
-  if (pose.cell != kNoCell) {
-    if (util_m3) v.accumulated_utility_m3 = (*util_m3)[pose.cell];
-    if (field)
-      for (const std::int32_t fv : field->contributors[pose.cell])
-        if (fv >= 0) v.utility_from.push_back(fv);
-  }
-  return v;
 }
 
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
@@ -297,16 +301,25 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     if (chosen.size() >= wanted) break;
     if (!accept || accept(poses[i], i)) chosen.push_back(i);
   }
-  std::vector<View> views(chosen.size());
+  std::vector<View> described(chosen.size());
+  std::vector<std::vector<std::size_t>> seen(chosen.size());
   parallel(chosen.size(), [&](std::size_t k, viewpoints::FovScorer::Workspace& ws) {
-    views[k] = describe(poses[chosen[k]], chosen[k], util_m3, field, ws);
+    described[k] = describe(poses[chosen[k]], chosen[k], util_m3, field, ws, seen[k]);
   });
+  std::vector<std::size_t> kept(described.size());  // into `described`, best first
+  std::iota(kept.begin(), kept.end(), std::size_t(0));
   if (screened) {  // the full fan's U decides; ties keep the coarse order
-    std::stable_sort(views.begin(), views.end(),
-                     [](const View& l, const View& r) { return l.void_cells_seen > r.void_cells_seen; });
-    while (!views.empty() && views.back().void_cells_seen == 0) views.pop_back();
+    std::stable_sort(kept.begin(), kept.end(), [&](std::size_t l, std::size_t r) {
+      return described[l].void_cells_seen > described[r].void_cells_seen;
+    });
+    while (!kept.empty() && described[kept.back()].void_cells_seen == 0) kept.pop_back();
   }
-  if (views.size() > top) views.resize(top);
+  if (kept.size() > top) kept.resize(top);
+  std::vector<View> views(kept.size());
+  parallel(kept.size(), [&](std::size_t j, viewpoints::FovScorer::Workspace&) {
+    views[j] = std::move(described[kept[j]]);
+    name_seen(views[j], seen[kept[j]]);
+  });
   return views;
 }
 

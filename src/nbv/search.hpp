@@ -78,10 +78,14 @@ struct Search {
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
-  /// Pose `i` as a view: U and the void cells seen with the full fan, per cluster, the
-  /// field's value and contributors at its cell.
+  /// Pose `i` as a view: U with the full fan, the field's value and contributors at its
+  /// cell; the void cells seen go to `seen` (grid indices, ascending).
   View describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
-                const utility::Field* field, viewpoints::FovScorer::Workspace& ws) const;
+                const utility::Field* field, viewpoints::FovScorer::Workspace& ws,
+                std::vector<std::size_t>& seen) const;
+  /// Fills v.seen_void_cells and v.voids_seen from `seen` (grid indices, ascending): only for
+  /// the views rank() keeps, as a real map's view sees 10^5 cells.
+  void name_seen(View& v, const std::vector<std::size_t>& seen) const;
   /// fn(i, a thread's workspace) for i in [0, n), on config.threads threads (0: all cores);
   /// progress reported as `stage` when given.
   void parallel(std::size_t n, const std::function<void(std::size_t, viewpoints::FovScorer::Workspace&)>& fn,

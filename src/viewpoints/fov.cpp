@@ -70,6 +70,21 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
 
+void FovScorer::ascending(const Workspace& ws, std::vector<std::size_t>& seen) {
+  seen.clear();
+  seen.reserve(ws.counted.size());
+  // A view of a real map sees 10^5 cells and more: reading them off the bits in order takes
+  // a pass over the words, where sorting took a tenth of a replay's time. Few cells: sort.
+  if (ws.counted.size() * 16 < ws.counted_bits.size()) {
+    seen.assign(ws.counted.begin(), ws.counted.end());
+    std::sort(seen.begin(), seen.end());
+    return;
+  }
+  for (std::size_t w = 0; w < ws.counted_bits.size(); ++w)
+    for (std::uint64_t bits = ws.counted_bits[w]; bits != 0; bits &= bits - 1)
+      seen.push_back(w * 64 + std::size_t(__builtin_ctzll(bits)));
+}
+
 FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Workspace& ws,
                                   std::vector<std::size_t>* seen, const std::vector<Eigen::Vector3d>* rays) const {
   const std::size_t words = (grid_.cell_count() + 63) / 64;
@@ -119,11 +134,8 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     }
   }
   s.targets_seen = ws.counted.size();
+  if (seen) ascending(ws, *seen);
   for (const std::size_t i : ws.counted) ws.counted_bits[i >> 6] = 0;  // clean for the next pose
-  if (seen) {
-    seen->assign(ws.counted.begin(), ws.counted.end());
-    std::sort(seen->begin(), seen->end());
-  }
   ws.counted.clear();
   return s;
 }

@@ -67,6 +67,9 @@ class FovScorer {
   void set_unknown_depth(int cells) { unknown_depth_ = cells; }
 
  private:
+  /// The cells of ws.counted, ascending.
+  static void ascending(const Workspace& ws, std::vector<std::size_t>& seen);
+
   const map::DenseGrid& grid_;
   /// Per grid cell: its VoxelState in the low two bits, kTarget when it is a target: the
   /// walk loads one byte per cell.
