@@ -43,7 +43,7 @@ struct Shared {
   /// written through memcpy), so that the field takes no second grid-sized array: on a
   /// 17 M-cell grid that is 136 MB of fresh pages less.
   core::LargeVector<double> util_cells;
-  core::LargeVector<std::array<std::int32_t, kContributors>> contributors;
+  Contributors contributors;
   std::vector<std::uint32_t> rank;  ///< per frontier-void: its place in `order`
   std::mutex mutex;
 };
@@ -79,9 +79,10 @@ void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
     sum += weight * w.passes[index];
     std::memcpy(&shared.util_cells[index], &sum, sizeof sum);
     w.passes[index] = 0;
-    auto& slots = shared.contributors[index];
     // Frontier-voids arrive about in rank order: most cells already hold four better ones.
-    if (slots.back() >= 0 && shared.rank[std::size_t(slots.back())] < rank) continue;
+    const std::int32_t last = shared.contributors[index].back();
+    if (last >= 0 && shared.rank[std::size_t(last)] < rank) continue;
+    auto& slots = shared.contributors.make(index);
     std::int32_t carry = fv;  // insert by rank, dropping the last
     for (auto& slot : slots) {
       if (slot >= 0 && shared.rank[std::size_t(slot)] < rank) continue;
@@ -329,7 +330,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
                              unsigned(std::max<std::size_t>(1, order.size()))));
   Shared shared;
   shared.util_cells.assign(grid.cell_count(), 0.0);  // all bits zero: the sum 0
-  shared.contributors.assign(grid.cell_count(), {-1, -1, -1, -1});
+  shared.contributors = Contributors(grid.cell_count());
   shared.rank.assign(a.frontier_voids.size(), 0);
   for (std::size_t i = 0; i < order.size(); ++i) shared.rank[std::size_t(order[i])] = std::uint32_t(i);
   std::optional<Eigen::AlignedBox3d> read_box;
