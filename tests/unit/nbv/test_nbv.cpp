@@ -306,7 +306,8 @@ TEST(NbvRealData, OnTheSlambookMapTheSampledBestViewSeesWhatTheExactOneSees) {
 /// U of a pose with the default full fan, from the map and the analysis alone: the void
 /// cells of voids a frontier touches, on a grid over the known cells (the search's grid when
 /// neither the search space nor the view bounds are given).
-std::size_t full_fan_U(const map::OccupancyMap& map, const frontier_voids::Analysis& a, const Eigen::Isometry3d& T) {
+std::size_t full_fan_U(const map::OccupancyMap& map, const frontier_voids::Analysis& a, const Eigen::Isometry3d& T,
+                       std::vector<map::VoxelKey>* seen_keys = nullptr) {
   const map::Stats stats = map.stats();
   const map::DenseGrid grid(map, Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m));
   core::LargeVector<std::uint8_t> mask(grid.cell_count(), 0);
@@ -318,12 +319,18 @@ std::size_t full_fan_U(const map::OccupancyMap& map, const frontier_voids::Analy
   const viewpoints::FovScorer scorer(grid, std::move(mask), viewpoints::ray_fan(c.sensor.intrinsics, c.ray_cols, c.ray_rows),
                                      c.sensor.depth_max_m, c.sensor.depth_min_m);
   viewpoints::FovScorer::Workspace ws;
-  return scorer.score(T, ws).targets_seen;
+  std::vector<std::size_t> seen;
+  const std::size_t U = scorer.score(T, ws, &seen).targets_seen;
+  if (seen_keys) {
+    seen_keys->clear();
+    for (const std::size_t i : seen) seen_keys->push_back(grid.key(i));
+  }
+  return U;
 }
 
 /// The screened search (defaults) against the unscreened one (coarse fan off), same seed:
-/// the screened views carry the full fan's U (full_fan_U is the oracle) in descending
-/// order. Adds both best views' U to the sums.
+/// the screened views carry the full fan's U and seen cells (full_fan_U is the oracle) in
+/// descending order. Adds both best views' U to the sums.
 void compare_screened(const map::OccupancyMap& map, const frontier_voids::Analysis& a, const std::optional<Reach>& reach,
                       std::uint64_t seed, double& screened_sum, double& full_sum) {
   Config screened, full;
@@ -337,8 +344,13 @@ void compare_screened(const map::OccupancyMap& map, const frontier_voids::Analys
     if (i > 0) {
       EXPECT_GE(s.views[i - 1].void_cells_seen, s.views[i].void_cells_seen);
     }
-    if (i < 3) {
-      EXPECT_EQ(s.views[i].void_cells_seen, full_fan_U(map, a, s.views[i].T_world_sensor)) << "view " << i;
+    if (i < 3) {  // and the cells: their keys in key order, counted per void
+      std::vector<map::VoxelKey> keys;
+      EXPECT_EQ(s.views[i].void_cells_seen, full_fan_U(map, a, s.views[i].T_world_sensor, &keys)) << "view " << i;
+      EXPECT_EQ(s.views[i].seen_void_cells, keys) << "view " << i;
+      std::size_t per_void = 0;
+      for (const auto& [id, cells] : s.views[i].voids_seen) per_void += cells;
+      EXPECT_EQ(per_void, keys.size()) << "view " << i;
     }
   }
   EXPECT_EQ(f.views.front().void_cells_seen, full_fan_U(map, a, f.views.front().T_world_sensor));
