@@ -53,8 +53,7 @@ struct Shared {
 /// every cell a ray passes (most passes repeat a cell). The count is a byte per cell that
 /// spills 255 passes at a time into `wrapped`: a cell rarely sees that many passes from
 /// one frontier-void, and a byte keeps the scratch in the core's cache (a 4-byte count took
-/// 1.5 MB per thread on the paper replicas, more than the 1 MB L2 of the machines measured;
-/// the accumulation was a fifth slower).
+/// 1.5 MB per thread on the paper replicas, more than the 1 MB L2 of the machines measured).
 struct Worker {
   core::LargeVector<std::uint8_t> passes;  ///< per grid cell, modulo 256
   std::vector<std::size_t> wrapped;        ///< a cell per 255 passes its byte spilled
