@@ -59,10 +59,8 @@ double fit_score(const Moments& m, double R) {
 
 namespace {
 
-/// Seeded region growing (§IV-B): from each cell not yet in a cluster, in a seeded random
-/// order, breadth first over 26-neighbours, adding a neighbour while the fit score (Eq. 2)
-/// stays at or above the threshold. Returns each cell's cluster, clusters in growing order.
-std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+/// grow() over a key index: for cells that fill little of their box.
+std::vector<int> grow_sparse(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
                       const ClusterConfig& config) {
   const double R = map.resolution_m();
   const map::KeyIndex index(cells.size(), [&](auto&& visit) {  // cell → its index in `cells`
@@ -105,6 +103,82 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
   return owner;
 }
 
+/// The cells' box with a margin of one cell, as a dense array of labels: kNone (no cell
+/// there), kFree (a cell in no cluster yet) or its cluster. A neighbour is one load at a
+/// fixed offset; the margin keeps every neighbour of a cell inside the box.
+struct LabelBox {
+  static constexpr int kNone = -2, kFree = -1;
+  int lo[3] = {0, 0, 0};
+  std::int64_t stride[3] = {1, 0, 0};
+  std::vector<int> label;
+
+  /// Empty (label.empty()) when the box holds more than `max_cells`.
+  LabelBox(const std::vector<map::VoxelKey>& cells, std::size_t max_cells) {
+    int hi[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a) lo[a] = INT32_MAX, hi[a] = INT32_MIN;
+    for (const map::VoxelKey& k : cells) {
+      const int c[3] = {k.x, k.y, k.z};
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - 1), hi[a] = std::max(hi[a], c[a] + 1);
+    }
+    const std::int64_t n[3] = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
+    if (cells.empty() || double(n[0]) * double(n[1]) * double(n[2]) > double(max_cells)) return;
+    stride[1] = n[0];
+    stride[2] = n[0] * n[1];
+    label.assign(std::size_t(stride[2] * n[2]), kNone);
+    for (const map::VoxelKey& k : cells) label[at(k)] = kFree;
+  }
+  std::size_t at(const map::VoxelKey& k) const {
+    return std::size_t((k.x - lo[0]) * stride[0] + (k.y - lo[1]) * stride[1] + (k.z - lo[2]) * stride[2]);
+  }
+};
+
+/// Seeded region growing (§IV-B): from each cell not yet in a cluster, in a seeded random
+/// order, breadth first over 26-neighbours, adding a neighbour while the fit score (Eq. 2)
+/// stays at or above the threshold. Returns each cell's cluster, clusters in growing order.
+/// Void cells fill much of their box: labels in a dense box (LabelBox); a sparse set of
+/// cells goes through a key index.
+std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                      const ClusterConfig& config) {
+  LabelBox box(cells, 32 * cells.size() + (std::size_t(1) << 16));
+  if (box.label.empty()) return grow_sparse(map, cells, config);
+  const double R = map.resolution_m();
+  std::vector<std::uint32_t> order(cells.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
+  std::mt19937_64 rng(config.seed);
+  std::shuffle(order.begin(), order.end(), rng);
+
+  int clusters = 0;
+  std::vector<std::pair<map::VoxelKey, std::size_t>> queue;  // (cell, its label); read from `head` on
+  for (const std::uint32_t start : order) {
+    const std::size_t at = box.at(cells[start]);
+    if (box.label[at] != LabelBox::kFree) continue;
+    const int id = clusters++;
+    Moments m{map.center_of(cells[start])};
+    m.add(map.center_of(cells[start]));
+    box.label[at] = id;
+    queue.assign(1, {cells[start], at});
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const auto [k, k_at] = queue[head];
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const std::size_t n_at = std::size_t(std::int64_t(k_at) + dz * box.stride[2] + dy * box.stride[1] + dx);
+            if (box.label[n_at] != LabelBox::kFree) continue;  // no void cell, in a cluster, or k itself
+            const map::VoxelKey n{std::uint16_t(k.x + dx), std::uint16_t(k.y + dy), std::uint16_t(k.z + dz)};
+            Moments with = m;
+            with.add(map.center_of(n));
+            if (fit_score(with, R) < config.min_fit_score) continue;  // stays for a later seed
+            m = with;
+            box.label[n_at] = id;
+            queue.emplace_back(n, n_at);
+          }
+    }
+  }
+  std::vector<int> owner(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) owner[i] = box.label[box.at(cells[i])];
+  return owner;
+}
+
 /// μ, the axes, λ, a, N·R³ and S of a cluster's cells (key order).
 VoidCluster describe(std::vector<map::VoxelKey> cells, const map::OccupancyMap& map) {
   const double R = map.resolution_m();
@@ -124,10 +198,11 @@ VoidCluster describe(std::vector<map::VoxelKey> cells, const map::OccupancyMap& 
 
 }  // namespace
 
-std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
-                                       const ClusterConfig& config) {
-  throw_if_problems("void clusters", config.validate());
-  const std::vector<int> owner = grow(map, cells, config);
+namespace {
+
+/// The clusters of `owner` (each cell's cluster, numbered in growing order).
+std::vector<VoidCluster> number_and_describe(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                                             const std::vector<int>& owner) {
   // Number clusters by their smallest key: `cells` is in key order, so in order of first
   // appearance; and each cluster's cells come out in key order too.
   std::vector<int> id_of(owner.empty() ? 0 : std::size_t(*std::max_element(owner.begin(), owner.end())) + 1, -1);
@@ -147,6 +222,20 @@ std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::
     clusters.back().id = int(clusters.size()) - 1;
   }
   return clusters;
+}
+
+}  // namespace
+
+std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                                       const ClusterConfig& config) {
+  throw_if_problems("void clusters", config.validate());
+  return number_and_describe(map, cells, grow(map, cells, config));
+}
+
+std::vector<VoidCluster> cluster_voids_indexed(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                                               const ClusterConfig& config) {
+  throw_if_problems("void clusters", config.validate());
+  return number_and_describe(map, cells, grow_sparse(map, cells, config));
 }
 
 }  // namespace fvx::voids

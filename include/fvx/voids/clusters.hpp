@@ -51,5 +51,9 @@ struct VoidCluster {
 /// the clusters' smallest keys, so the same input gives the same clusters.
 std::vector<VoidCluster> cluster_voids(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
                                        const ClusterConfig& config);
+/// cluster_voids through a key index whatever the cells' density: its path for cells that
+/// fill little of their box, and the oracle of its dense path (labels in the box; tests).
+std::vector<VoidCluster> cluster_voids_indexed(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
+                                               const ClusterConfig& config);
 
 }  // namespace fvx::voids

@@ -2,6 +2,8 @@
 // determinism; frontier-void pairing and utility.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <set>
 
 #include "fvx/frontier_voids/frontier_voids.hpp"
@@ -33,6 +35,45 @@ TEST(VoidClusters, AFilledBoxIsOneClusterWithTheBoxScore) {
   // The longest axis is x: a = sqrt(5 · L²/12) with L = 0.6 m.
   EXPECT_NEAR(c.semi_axes_m.maxCoeff(), std::sqrt(5.0 * 0.36 / 12.0), 1e-9);
   for (const auto& corner : c.corners()) EXPECT_TRUE(corner.allFinite());
+}
+
+// The dense path (labels in the cells' box) against the key-index path, its oracle: the same
+// clusters, cell for cell and bit for bit, on random blobs of void cells (many clusters, cells
+// at the edge of the key space) over several seeds and thresholds.
+TEST(VoidClusters, TheDensePathEqualsTheIndexedOne) {
+  const map::OccupancyMap map(0.05);
+  std::mt19937 rng(11);
+  std::size_t compared = 0;
+  for (const int origin : {32700, 0, 65535 - 30}) {
+    std::set<map::VoxelKey> unique;
+    std::uniform_int_distribution<int> u(0, 29);
+    for (int blob = 0; blob < 6; ++blob) {
+      const int cx = u(rng), cy = u(rng), cz = u(rng), r = 2 + u(rng) % 5;
+      for (int z = -r; z <= r; ++z)
+        for (int y = -r; y <= r; ++y)
+          for (int x = -r; x <= r; ++x) {
+            const int k[3] = {std::clamp(origin + cx + x, 0, 65535), std::clamp(origin + cy + y, 0, 65535),
+                              std::clamp(origin + cz + z, 0, 65535)};
+            if (x * x + y * y + 2 * z * z <= r * r) unique.insert({std::uint16_t(k[0]), std::uint16_t(k[1]), std::uint16_t(k[2])});
+          }
+    }
+    const std::vector<map::VoxelKey> cells(unique.begin(), unique.end());  // key order
+    for (const double threshold : {0.5, 0.7, 0.9})
+      for (std::uint64_t seed : {1u, 2u}) {
+        ClusterConfig config;
+        config.seed = seed;
+        config.min_fit_score = threshold;
+        const auto dense = cluster_voids(map, cells, config), indexed = cluster_voids_indexed(map, cells, config);
+        ASSERT_EQ(dense.size(), indexed.size());
+        for (std::size_t i = 0; i < dense.size(); ++i) {
+          ASSERT_EQ(dense[i].cells, indexed[i].cells) << "cluster " << i;
+          ASSERT_EQ(dense[i].mean_m, indexed[i].mean_m);
+          ASSERT_EQ(dense[i].fit_score, indexed[i].fit_score);
+        }
+        compared += dense.size();
+      }
+  }
+  EXPECT_GT(compared, 100u) << "the blobs should split into many clusters";
 }
 
 TEST(VoidClusters, TwoBoxesJoinedByALineSplitAndEveryCellIsInOneCluster) {
