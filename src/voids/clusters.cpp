@@ -55,22 +55,34 @@ double fit_score(const Moments& m, double R) {
   return m.n * R * R * R / (4.0 / 3.0 * M_PI * abc);
 }
 
-}  // namespace
+/// Adds the cell centred at `p` to the cluster of `m` if its fit score (Eq. 2) stays at or
+/// above `min_fit_score`; says whether it did.
+bool grows(Moments& m, const Eigen::Vector3d& p, double R, double min_fit_score) {
+  Moments with = m;
+  with.add(p);
+  if (fit_score(with, R) < min_fit_score) return false;
+  m = with;
+  return true;
+}
 
-namespace {
+/// 0 … n − 1 in the seeded order in which cells start clusters.
+std::vector<std::uint32_t> seeded_order(std::size_t n, std::uint64_t seed) {
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  return order;
+}
 
 /// grow() over a key index: for cells that fill little of their box.
 std::vector<int> grow_sparse(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
-                      const ClusterConfig& config) {
+                             const ClusterConfig& config) {
   const double R = map.resolution_m();
   const map::KeyIndex index(cells.size(), [&](auto&& visit) {  // cell → its index in `cells`
     for (std::size_t i = 0; i < cells.size(); ++i) visit(map::pack(cells[i]), std::uint32_t(i));
   });
   std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
-  std::vector<std::uint32_t> order(cells.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::mt19937_64 rng(config.seed);
-  std::shuffle(order.begin(), order.end(), rng);
+  const std::vector<std::uint32_t> order = seeded_order(cells.size(), config.seed);
 
   int clusters = 0;
   std::vector<std::uint32_t> queue;  // first in, first out: read from `head` on
@@ -91,10 +103,7 @@ std::vector<int> grow_sparse(const map::OccupancyMap& map, const std::vector<map
             const map::VoxelKey n{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
             const std::uint32_t j = index.find(map::pack(n));
             if (j == map::KeyIndex::kMissing || owner[j] >= 0) continue;
-            Moments with = m;
-            with.add(map.center_of(n));
-            if (fit_score(with, R) < config.min_fit_score) continue;  // stays for a later seed
-            m = with;
+            if (!grows(m, map.center_of(n), R, config.min_fit_score)) continue;  // stays for a later seed
             owner[j] = id;
             queue.push_back(j);
           }
@@ -112,8 +121,9 @@ struct LabelBox {
   std::int64_t stride[3] = {1, 0, 0};
   std::vector<int> label;
 
-  /// Empty (label.empty()) when the box holds more than `max_cells`.
-  LabelBox(const std::vector<map::VoxelKey>& cells, std::size_t max_cells) {
+  /// Empty (label.empty()) when the cells fill too little of the box for a dense array
+  /// (map::KeyIndex::dense_fits, the key index's own rule).
+  explicit LabelBox(const std::vector<map::VoxelKey>& cells) {
     int hi[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) lo[a] = INT32_MAX, hi[a] = INT32_MIN;
     for (const map::VoxelKey& k : cells) {
@@ -121,7 +131,7 @@ struct LabelBox {
       for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - 1), hi[a] = std::max(hi[a], c[a] + 1);
     }
     const std::int64_t n[3] = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
-    if (cells.empty() || double(n[0]) * double(n[1]) * double(n[2]) > double(max_cells)) return;
+    if (cells.empty() || !map::KeyIndex::dense_fits(cells.size(), double(n[0]) * double(n[1]) * double(n[2]))) return;
     stride[1] = n[0];
     stride[2] = n[0] * n[1];
     label.assign(std::size_t(stride[2] * n[2]), kNone);
@@ -139,13 +149,10 @@ struct LabelBox {
 /// cells goes through a key index.
 std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,
                       const ClusterConfig& config) {
-  LabelBox box(cells, 32 * cells.size() + (std::size_t(1) << 16));
+  LabelBox box(cells);
   if (box.label.empty()) return grow_sparse(map, cells, config);
   const double R = map.resolution_m();
-  std::vector<std::uint32_t> order(cells.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::mt19937_64 rng(config.seed);
-  std::shuffle(order.begin(), order.end(), rng);
+  const std::vector<std::uint32_t> order = seeded_order(cells.size(), config.seed);
 
   int clusters = 0;
   std::vector<std::pair<map::VoxelKey, std::size_t>> queue;  // (cell, its label); read from `head` on
@@ -165,10 +172,7 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
             const std::size_t n_at = std::size_t(std::int64_t(k_at) + dz * box.stride[2] + dy * box.stride[1] + dx);
             if (box.label[n_at] != LabelBox::kFree) continue;  // no void cell, in a cluster, or k itself
             const map::VoxelKey n{std::uint16_t(k.x + dx), std::uint16_t(k.y + dy), std::uint16_t(k.z + dz)};
-            Moments with = m;
-            with.add(map.center_of(n));
-            if (fit_score(with, R) < config.min_fit_score) continue;  // stays for a later seed
-            m = with;
+            if (!grows(m, map.center_of(n), R, config.min_fit_score)) continue;  // stays for a later seed
             box.label[n_at] = id;
             queue.emplace_back(n, n_at);
           }
@@ -195,10 +199,6 @@ VoidCluster describe(std::vector<map::VoxelKey> cells, const map::OccupancyMap& 
   c.cells = std::move(cells);
   return c;
 }
-
-}  // namespace
-
-namespace {
 
 /// The clusters of `owner` (each cell's cluster, numbered in growing order).
 std::vector<VoidCluster> number_and_describe(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells,

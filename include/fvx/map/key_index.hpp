@@ -59,6 +59,13 @@ class KeyIndex {
     });
   }
 
+  /// Whether `keys` keys filling a box of `box_cells` cells go in a dense array over the box
+  /// (4 bytes per cell) rather than the hashed table (32 bytes per key, slower to probe).
+  /// Region growing (voids::cluster_voids) labels its cells the same way.
+  static bool dense_fits(std::size_t keys, double box_cells) {
+    return box_cells <= double(kDenseCellsPerKey) * double(keys) + double(kDenseFreeCells);
+  }
+
   /// The value stored for `key`, or kMissing.
   std::uint32_t find(std::uint64_t key) const {
     if (!dense_.empty()) {
@@ -91,8 +98,7 @@ class KeyIndex {
       }
     });
     for (int a = 0; a < 3; ++a) size_[a] = hi[a] - min_[a] + 1;
-    const double cells = double(size_[0]) * size_[1] * size_[2];
-    return cells <= double(kDenseCellsPerKey) * double(count) + double(kDenseFreeCells);
+    return dense_fits(count, double(size_[0]) * size_[1] * size_[2]);
   }
   std::size_t dense_index(std::uint64_t key) const {
     return (std::size_t((key >> 32 & 0xFFFF) - min_[2]) * size_[1] + ((key >> 16 & 0xFFFF) - min_[1])) * size_[0] +
