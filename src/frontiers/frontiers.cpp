@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <numeric>
-#include <unordered_map>
 
 #include "fvx/map/key_index.hpp"
+#include "fvx/map/sort_keys.hpp"
 
 namespace fvx::frontiers {
 namespace {
@@ -100,42 +100,86 @@ std::vector<map::VoxelKey> FrontierSet::cells(const map::OccupancyMap& map,
     const map::VoxelKey k = unpack(p);
     if (!bounds_m || bounds_m->contains(map.center_of(k))) out.push_back(k);
   }
-  std::sort(out.begin(), out.end());
+  map::sort_keys(out);
   return out;
 }
 
-std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells) {
-  // Union-find over the cells' indices; neighbours are found through a key → index table.
-  const map::KeyIndex index(cells.size(), [&](auto&& visit) {
-    for (std::size_t i = 0; i < cells.size(); ++i) visit(pack(cells[i]), std::uint32_t(i));
-  });
-  std::vector<std::size_t> parent(cells.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::size_t i) {
+namespace {
+
+/// One row (z, y) of a key-ordered cell list: the cells at indices [begin, end), x ascending.
+struct Row {
+  int z = 0, y = 0;
+  std::size_t begin = 0, end = 0;
+  bool before(int z_other, int y_other) const { return z < z_other || (z == z_other && y < y_other); }
+};
+
+std::vector<Row> rows_of(const std::vector<map::VoxelKey>& cells) {
+  std::vector<Row> rows;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (rows.empty() || rows.back().z != cells[i].z || rows.back().y != cells[i].y)
+      rows.push_back({cells[i].z, cells[i].y, i, i});
+    rows.back().end = i + 1;
+  }
+  return rows;
+}
+
+/// Union-find over cell indices; every root is the smallest index of its set.
+struct Forest {
+  std::vector<std::size_t> parent;
+  explicit Forest(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
-  };
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    // The 13 neighbours after the cell in key order: each pair of neighbours is joined once.
-    for (int dz = 0; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0))) continue;
-          const auto n = neighbour(cells[i], dx, dy, dz);
-          if (!n) continue;
-          const std::uint32_t j = index.find(pack(*n));
-          if (j == map::KeyIndex::kMissing) continue;
-          const std::size_t a = find(i), b = find(j);
-          if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the root is the smallest index
-        }
   }
+  void join(std::size_t i, std::size_t j) {
+    const std::size_t a = find(i), b = find(j);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// Joins each cell of row `a` with the cells of row `b` whose x lies within one of its own:
+/// both rows are sorted by x, so one pass over each.
+void join_rows(const std::vector<map::VoxelKey>& cells, const Row& a, const Row& b, Forest& forest) {
+  std::size_t lo = b.begin;
+  for (std::size_t i = a.begin; i < a.end; ++i) {
+    const int x = cells[i].x;
+    while (lo < b.end && int(cells[lo].x) + 1 < x) ++lo;
+    for (std::size_t j = lo; j < b.end && int(cells[j].x) <= x + 1; ++j) forest.join(i, j);
+  }
+}
+
+/// 26-connectivity over key-ordered cells, without a key look-up: each cell meets the 13
+/// neighbours after it in key order in its own row (x + 1) and in the four rows after it,
+/// (z, y + 1) and (z + 1, y − 1 … y + 1), which are found by walking the rows in order.
+Forest connect(const std::vector<map::VoxelKey>& cells) {
+  Forest forest(cells.size());
+  const std::vector<Row> rows = rows_of(cells);
+  constexpr int kNext[4][2] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};  // (dz, dy) of the rows after
+  std::size_t next[4] = {0, 0, 0, 0};  // per offset: the first row not before its target
+  for (const Row& row : rows) {
+    for (std::size_t i = row.begin; i + 1 < row.end; ++i)
+      if (cells[i + 1].x == cells[i].x + 1) forest.join(i, i + 1);
+    for (int k = 0; k < 4; ++k) {
+      const int z = row.z + kNext[k][0], y = row.y + kNext[k][1];
+      while (next[k] < rows.size() && rows[next[k]].before(z, y)) ++next[k];
+      if (next[k] < rows.size() && rows[next[k]].z == z && rows[next[k]].y == y)
+        join_rows(cells, row, rows[next[k]], forest);
+    }
+  }
+  return forest;
+}
+
+}  // namespace
+
+std::vector<Cluster> cluster(const map::OccupancyMap& map, const std::vector<map::VoxelKey>& cells) {
+  Forest forest = connect(cells);
   // Cells are in key order and every root is its cluster's smallest index, so numbering roots
   // in index order numbers clusters by their smallest key.
   std::vector<int> id_of_root(cells.size(), -1);
   std::vector<Cluster> clusters;
   const double R = map.resolution_m();
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    const std::size_t root = find(i);
+    const std::size_t root = forest.find(i);
     if (id_of_root[root] < 0) {
       id_of_root[root] = int(clusters.size());
       clusters.emplace_back();

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "fvx/core/error.hpp"
+#include "fvx/map/sort_keys.hpp"
 #include "tree.hpp"
 
 namespace fvx::map {
@@ -184,7 +185,7 @@ std::vector<Eigen::Vector3f> OccupancyMap::occupied_centers() const {
         for (unsigned dx = 0; dx < span; ++dx)
           keys.push_back({std::uint16_t(x0 + dx), std::uint16_t(y0 + dy), std::uint16_t(z0 + dz)});
   }
-  std::sort(keys.begin(), keys.end());
+  sort_keys(keys);
   std::vector<Eigen::Vector3f> centers;
   centers.reserve(keys.size());
   for (const auto& k : keys) centers.push_back(center_of(k).cast<float>());

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "fvx/map/key_index.hpp"
+#include "fvx/map/sort_keys.hpp"
 
 namespace fvx::voids {
 
@@ -265,7 +266,7 @@ std::vector<map::VoxelKey> VoidSet::cells(const map::OccupancyMap& map,
     const map::VoxelKey k = unpack(p);
     if (!bounds_m || bounds_m->contains(map.center_of(k))) out.push_back(k);
   }
-  std::sort(out.begin(), out.end());
+  map::sort_keys(out);
   return out;
 }
 

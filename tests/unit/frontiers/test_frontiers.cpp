@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include "fvx/frontiers/frontiers.hpp"
 #include "slambook.hpp"
@@ -98,6 +99,58 @@ TEST(Frontiers, ClustersAre26ConnectedAndNumberedByTheirSmallestKey) {
   EXPECT_EQ(clusters[2].cells.size(), 2u);
   EXPECT_EQ(cluster(map, sorted).size(), 3u);
   for (std::size_t i = 0; i < clusters.size(); ++i) EXPECT_EQ(clusters[i].id, int(i));
+}
+
+/// Clusters by breadth-first search over a std::set, 26-neighbours by definition, in order
+/// of each cluster's smallest key.
+std::vector<std::vector<map::VoxelKey>> brute_force_clusters(const std::vector<map::VoxelKey>& cells) {
+  const std::set<map::VoxelKey> all(cells.begin(), cells.end());
+  std::set<map::VoxelKey> done;
+  std::vector<std::vector<map::VoxelKey>> out;
+  for (const map::VoxelKey& start : all) {
+    if (!done.insert(start).second) continue;
+    std::vector<map::VoxelKey> members{start};
+    for (std::size_t head = 0; head < members.size(); ++head)
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const map::VoxelKey k = members[head];
+            const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
+            if (x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) continue;
+            const map::VoxelKey n{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
+            if (all.count(n) && done.insert(n).second) members.push_back(n);
+          }
+    std::sort(members.begin(), members.end());
+    out.push_back(members);
+  }
+  return out;
+}
+
+// Random cells at three densities, in the middle and at both ends of the key space (where a
+// neighbour row would wrap): the row-walking clustering equals breadth-first search.
+TEST(Frontiers, ClustersEqualBreadthFirstSearchOnRandomCells) {
+  const map::OccupancyMap map(0.1);
+  for (unsigned seed : {1u, 2u}) {
+    for (double density : {0.05, 0.2, 0.5}) {
+      for (int origin : {0, 30000, 0xFFFF - 11}) {
+        std::mt19937 rng(seed);
+        std::bernoulli_distribution keep(density);
+        std::vector<map::VoxelKey> cells;
+        for (int z = 0; z < 12; ++z)
+          for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x)
+              if (keep(rng))
+                cells.push_back({std::uint16_t(origin + x), std::uint16_t(origin + y), std::uint16_t(origin + z)});
+        const auto oracle = brute_force_clusters(cells);
+        const auto clusters = cluster(map, cells);
+        ASSERT_EQ(clusters.size(), oracle.size()) << seed << " " << density << " " << origin;
+        for (std::size_t i = 0; i < clusters.size(); ++i) {
+          EXPECT_EQ(clusters[i].id, int(i));
+          EXPECT_EQ(clusters[i].cells, oracle[i]) << seed << " " << density << " " << origin << " cluster " << i;
+        }
+      }
+    }
+  }
 }
 
 // Integrating the five slambook frames one by one, the incremental set equals a from-scratch
