@@ -18,10 +18,12 @@ std::optional<map::VoxelKey> neighbour(const map::VoxelKey& k, int dx, int dy, i
   return map::VoxelKey{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
 }
 
-bool has_unknown_face_neighbour(const map::OccupancyMap& map, const map::VoxelKey& key) {
+/// `read`: OccupancyMap::state or a map::StateReader.
+template <typename Read>
+bool has_unknown_face_neighbour(Read& read, const map::VoxelKey& key) {
   for (const auto& d : kFaces) {
     const auto n = neighbour(key, d[0], d[1], d[2]);
-    if (n && map.state(*n) == map::VoxelState::Unknown) return true;
+    if (n && read(*n) == map::VoxelState::Unknown) return true;
   }
   return false;
 }
@@ -29,7 +31,8 @@ bool has_unknown_face_neighbour(const map::OccupancyMap& map, const map::VoxelKe
 }  // namespace
 
 bool is_frontier(const map::OccupancyMap& map, const map::VoxelKey& key) {
-  return map.state(key) == map::VoxelState::Free && has_unknown_face_neighbour(map, key);
+  auto read = [&](const map::VoxelKey& k) { return map.state(k); };
+  return map.state(key) == map::VoxelState::Free && has_unknown_face_neighbour(read, key);
 }
 
 std::vector<map::VoxelKey> frontier_cells(const map::DenseGrid& grid) {
@@ -58,6 +61,7 @@ std::vector<map::VoxelKey> frontier_cells(const map::DenseGrid& grid) {
 
 void FrontierSet::rebuild(const map::OccupancyMap& map) {
   cells_.clear();
+  map::StateReader read(map);
   for (const map::Leaf& leaf : map.leaves()) {
     if (leaf.state != map::VoxelState::Free) continue;
     const int n = int(leaf.size_cells);
@@ -71,36 +75,48 @@ void FrontierSet::rebuild(const map::OccupancyMap& map) {
           }
           const map::VoxelKey key{std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
                                   std::uint16_t(leaf.min_key.z + z)};
-          if (has_unknown_face_neighbour(map, key)) cells_.insert(pack(key));
+          if (has_unknown_face_neighbour(read, key)) cells_.push_back(key);
         }
   }
+  map::sort_keys(cells_);  // leaves do not overlap: no key twice
 }
 
 void FrontierSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
-  std::unordered_set<std::uint64_t> candidates;
-  candidates.reserve(changes.size() * 4);
+  std::vector<map::VoxelKey> candidates;
+  candidates.reserve(changes.size() * 7);
   for (const map::Change& c : changes) {
-    candidates.insert(pack(c.key));
+    candidates.push_back(c.key);
     for (const auto& d : kFaces)
-      if (const auto n = neighbour(c.key, d[0], d[1], d[2])) candidates.insert(pack(*n));
+      if (const auto n = neighbour(c.key, d[0], d[1], d[2])) candidates.push_back(*n);
   }
-  for (const std::uint64_t p : candidates) {
-    if (is_frontier(map, unpack(p)))
-      cells_.insert(p);
-    else
-      cells_.erase(p);
+  map::sort_keys(candidates);
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  // In key order each look-up is near the one before it (StateReader). Then one merge: a
+  // candidate's new status replaces its old one, every other cell keeps its own.
+  map::StateReader read(map);
+  std::vector<map::VoxelKey> merged;
+  merged.reserve(cells_.size() + candidates.size() / 4);
+  auto old = cells_.begin();
+  for (const map::VoxelKey& k : candidates) {
+    for (; old != cells_.end() && *old < k; ++old) merged.push_back(*old);
+    if (old != cells_.end() && *old == k) ++old;
+    if (read(k) == map::VoxelState::Free && has_unknown_face_neighbour(read, k)) merged.push_back(k);
   }
+  merged.insert(merged.end(), old, cells_.end());
+  cells_ = std::move(merged);
+}
+
+bool FrontierSet::contains(const map::VoxelKey& key) const {
+  return std::binary_search(cells_.begin(), cells_.end(), key);
 }
 
 std::vector<map::VoxelKey> FrontierSet::cells(const map::OccupancyMap& map,
                                               const std::optional<Eigen::AlignedBox3d>& bounds_m) const {
+  if (!bounds_m) return cells_;
   std::vector<map::VoxelKey> out;
   out.reserve(cells_.size());
-  for (const std::uint64_t p : cells_) {
-    const map::VoxelKey k = unpack(p);
-    if (!bounds_m || bounds_m->contains(map.center_of(k))) out.push_back(k);
-  }
-  map::sort_keys(out);
+  for (const map::VoxelKey& k : cells_)
+    if (bounds_m->contains(map.center_of(k))) out.push_back(k);
   return out;
 }
 

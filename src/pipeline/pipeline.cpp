@@ -114,8 +114,9 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config) {
 
 void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_cells, StepResult& r) {
   std::vector<map::VoxelKey> hidden;
+  map::StateReader read(state.map);
   for (const map::VoxelKey& k : expected_void_cells)
-    if (state.map.state(k) == map::VoxelState::Unknown) hidden.push_back(k);
+    if (read(k) == map::VoxelState::Unknown) hidden.push_back(k);
   r.expected_hidden = hidden.size();
   r.expected_revealed = expected_void_cells.size() - hidden.size();
   std::vector<map::VoxelKey> merged;

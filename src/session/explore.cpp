@@ -122,7 +122,8 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     record.step = pipeline.step(std::move(scan), view > 0 ? &expected : nullptr);
 
     record.previous_prediction = previous_prediction;
-    for (const map::VoxelKey& k : previous_voids) record.revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
+    map::StateReader read(state.map);  // the void cells are in key order: each look-up near the last
+    for (const map::VoxelKey& k : previous_voids) record.revealed_void_cells += read(k) != map::VoxelState::Unknown;
     previous_voids = record.step.analysis.void_cells;
     const nbv::Result& next = record.step.nbv;
     visited.push_back(record.T_world_sensor_true);

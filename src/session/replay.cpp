@@ -155,7 +155,8 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
     finish_in_flight();  // the previous view's choice decides what this scan hides
 
     against_choice(logged, chosen, state, *out);
-    for (const map::VoxelKey& k : previous_voids) out->revealed_void_cells += state.map.state(k) != map::VoxelState::Unknown;
+    map::StateReader read(state.map);  // the void cells are in key order: each look-up near the last
+    for (const map::VoxelKey& k : previous_voids) out->revealed_void_cells += read(k) != map::VoxelState::Unknown;
     previous_voids = out->step.analysis.void_cells;
     taken.push_back(scans[i].T_world_sensor_true.value_or(out->step.T_world_sensor));
     out->known_m3 = known_volume_m3(state.map, out->step.analysis.bounds_m);

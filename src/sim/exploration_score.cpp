@@ -204,20 +204,22 @@ void ExplorationScore::restrict_target_to_views(const RayCaster& caster,
 double ExplorationScore::known_fraction(const map::OccupancyMap& map) const {
   if (observable_.empty()) return 1.0;
   std::size_t known = 0;
+  map::StateReader read(map);
   for (const Eigen::Vector3d& p : observable_) {
     const auto key = map.key_of(p);
-    known += key && map.state(*key) != map::VoxelState::Unknown;
+    known += key && read(*key) != map::VoxelState::Unknown;
   }
   return double(known) / double(observable_.size());
 }
 
 double ExplorationScore::void_known_fraction(const map::OccupancyMap& map) const {
   std::size_t all = 0, known = 0;
+  map::StateReader read(map);
   for (std::size_t c = 0; c < observable_.size(); ++c) {
     if (!in_hull_[c]) continue;
     ++all;
     const auto key = map.key_of(observable_[c]);
-    known += key && map.state(*key) != map::VoxelState::Unknown;
+    known += key && read(*key) != map::VoxelState::Unknown;
   }
   return all ? double(known) / double(all) : 1.0;
 }

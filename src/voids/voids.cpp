@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "fvx/map/key_index.hpp"
 #include "fvx/map/sort_keys.hpp"
@@ -92,7 +93,7 @@ Hull convex_hull(const std::vector<Eigen::Vector3d>& points) {
 }
 
 struct VoidSet::State {
-  std::unordered_set<std::uint64_t> cells;
+  std::vector<map::VoxelKey> cells;  ///< in key order
   std::unordered_set<std::uint64_t> occupied;  ///< the cells the hull is built from
   std::unordered_set<std::uint64_t> vertices;  ///< occupied cells on the hull
   Hull hull;
@@ -106,7 +107,9 @@ VoidSet& VoidSet::operator=(VoidSet&&) noexcept = default;
 
 const Hull& VoidSet::hull() const { return state_->hull; }
 std::size_t VoidSet::size() const { return state_->cells.size(); }
-bool VoidSet::contains(const map::VoxelKey& key) const { return state_->cells.count(pack(key)) != 0; }
+bool VoidSet::contains(const map::VoxelKey& key) const {
+  return std::binary_search(state_->cells.begin(), state_->cells.end(), key);
+}
 
 namespace {
 
@@ -127,16 +130,17 @@ std::pair<int, int> cell_range(double lo, double hi, double R) {
   return {int(std::ceil(lo / R - 0.5)), int(std::floor(hi / R - 0.5))};
 }
 
-/// Adds the unknown cells inside `now` but not `before`, removes those inside `before` but
-/// not `now`, column by column.
-void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now,
-            std::unordered_set<std::uint64_t>& cells) {
+/// The unknown cells inside `now` but not `before` (`added`) and the cells inside `before`
+/// but not `now` (`removed`), column by column, each in key order.
+void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now, std::vector<map::VoxelKey>& added,
+            std::vector<map::VoxelKey>& removed) {
   Eigen::AlignedBox3d box = now.bounds_m;
   if (!before.empty()) box.extend(before.bounds_m);
   if (box.isEmpty()) return;
   const double R = map.resolution_m();
   const auto [x0, x1] = cell_range(box.min().x(), box.max().x(), R);
   const auto [y0, y1] = cell_range(box.min().y(), box.max().y(), R);
+  map::StateReader read(map);  // up a column, each look-up near the last
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
       const double cx = (x + 0.5) * R, cy = (y + 0.5) * R;
@@ -149,12 +153,28 @@ void rescan(const map::OccupancyMap& map, const Hull& before, const Hull& now,
       };
       for (int z = in_now.first; z <= in_now.second; ++z) {
         if (z >= in_before.first && z <= in_before.second) continue;
-        if (map.state(key(z)) == map::VoxelState::Unknown) cells.insert(pack(key(z)));
+        if (read(key(z)) == map::VoxelState::Unknown) added.push_back(key(z));
       }
       for (int z = in_before.first; z <= in_before.second; ++z)
-        if (z < in_now.first || z > in_now.second) cells.erase(pack(key(z)));
+        if (z < in_now.first || z > in_now.second) removed.push_back(key(z));
     }
   }
+  map::sort_keys(added);
+  map::sort_keys(removed);
+}
+
+/// (cells ∪ added) \ removed, all three in key order.
+std::vector<map::VoxelKey> merge(const std::vector<map::VoxelKey>& cells, const std::vector<map::VoxelKey>& added,
+                                 const std::vector<map::VoxelKey>& removed) {
+  std::vector<map::VoxelKey> both, out;
+  if (!added.empty()) {
+    both.reserve(cells.size() + added.size());
+    std::set_union(cells.begin(), cells.end(), added.begin(), added.end(), std::back_inserter(both));
+  }
+  const std::vector<map::VoxelKey>& all = added.empty() ? cells : both;
+  out.reserve(all.size());
+  std::set_difference(all.begin(), all.end(), removed.begin(), removed.end(), std::back_inserter(out));
+  return out;
 }
 
 /// Per column (x, y) of the grid, the centres of its lowest and highest occupied cells (in
@@ -227,16 +247,18 @@ void VoidSet::rebuild(const map::OccupancyMap& map, const std::optional<Eigen::A
         }
   }
   s.hull = hull_of(map, std::vector<std::uint64_t>(s.occupied.begin(), s.occupied.end()), s.vertices);
-  rescan(map, Hull{}, s.hull, s.cells);
+  std::vector<map::VoxelKey> removed;
+  rescan(map, Hull{}, s.hull, s.cells, removed);
 }
 
 void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
   State& s = *state_;
   std::vector<std::uint64_t> outside;  // new occupied cells beyond the hull
+  std::vector<map::VoxelKey> known;    // cells now known: no longer void
   bool vertex_lost = false;
   for (const map::Change& c : changes) {
     const std::uint64_t p = pack(c.key);
-    if (c.after != map::VoxelState::Unknown) s.cells.erase(p);
+    if (c.after != map::VoxelState::Unknown) known.push_back(c.key);
     if (s.hull_box_m && !s.hull_box_m->contains(map.center_of(c.key))) continue;  // not a hull cell
     if (c.after == map::VoxelState::Occupied && c.before != map::VoxelState::Occupied) {
       s.occupied.insert(p);
@@ -246,7 +268,13 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
       vertex_lost |= s.vertices.count(p) != 0;  // a vertex left: the hull may shrink
     }
   }
-  if (outside.empty() && !vertex_lost) return;
+  // integrate()'s change sets are in key order; a change set made otherwise need not be.
+  if (!std::is_sorted(known.begin(), known.end())) map::sort_keys(known);
+  std::vector<map::VoxelKey> added, removed;
+  if (outside.empty() && !vertex_lost) {
+    s.cells = merge(s.cells, added, known);
+    return;
+  }
   const Hull before = s.hull;
   if (vertex_lost) {
     s.hull = hull_of(map, std::vector<std::uint64_t>(s.occupied.begin(), s.occupied.end()), s.vertices);
@@ -255,18 +283,20 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
     outside.insert(outside.end(), s.vertices.begin(), s.vertices.end());
     s.hull = hull_of(map, outside, s.vertices);
   }
-  rescan(map, before, s.hull, s.cells);
+  // A cell the scan made known is never added again (rescan adds only unknown cells).
+  rescan(map, before, s.hull, added, removed);
+  std::vector<map::VoxelKey> gone;
+  std::set_union(known.begin(), known.end(), removed.begin(), removed.end(), std::back_inserter(gone));
+  s.cells = merge(s.cells, added, gone);
 }
 
 std::vector<map::VoxelKey> VoidSet::cells(const map::OccupancyMap& map,
                                           const std::optional<Eigen::AlignedBox3d>& bounds_m) const {
+  if (!bounds_m) return state_->cells;
   std::vector<map::VoxelKey> out;
   out.reserve(state_->cells.size());
-  for (const std::uint64_t p : state_->cells) {
-    const map::VoxelKey k = unpack(p);
-    if (!bounds_m || bounds_m->contains(map.center_of(k))) out.push_back(k);
-  }
-  map::sort_keys(out);
+  for (const map::VoxelKey& k : state_->cells)
+    if (bounds_m->contains(map.center_of(k))) out.push_back(k);
   return out;
 }
 

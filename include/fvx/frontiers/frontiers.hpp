@@ -10,7 +10,6 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
-#include <unordered_set>
 #include <vector>
 
 #include "fvx/map/dense_grid.hpp"
@@ -40,13 +39,13 @@ class FrontierSet {
   void update(const map::OccupancyMap& map, const std::vector<map::Change>& changes);
 
   std::size_t size() const { return cells_.size(); }
-  bool contains(const map::VoxelKey& key) const { return cells_.count(pack(key)) != 0; }
+  bool contains(const map::VoxelKey& key) const;
   /// The frontier cells whose centres lie in `bounds_m` (all when empty), in key order.
   std::vector<map::VoxelKey> cells(const map::OccupancyMap& map,
                                    const std::optional<Eigen::AlignedBox3d>& bounds_m = std::nullopt) const;
 
  private:
-  std::unordered_set<std::uint64_t> cells_;
+  std::vector<map::VoxelKey> cells_;  ///< in key order
 };
 
 struct Cluster {
