@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
@@ -152,6 +153,35 @@ Eigen::Isometry3d keep_prior_along_weak_directions(const Cloud& source_fine, con
   return constrain_correction(T_local_sensor_prior, T_local_refined, observability);
 }
 
+/// Coarse pass from the prior; then the robust fine pass from the prior and from the coarse
+/// result, keeping the lower robust cost (point_to_plane.hpp says why). Adds the iterations
+/// and the fine start to `result`; `stopped`: the chosen passes stopped by the epsilons.
+/// Returns the chosen pose, local frame.
+Eigen::Matrix4f coarse_then_fine(const Config& config, const Cloud::Ptr& source_coarse, const Cloud::Ptr& target_coarse,
+                                 const Cloud& source_fine, const TargetSurface& surface,
+                                 const Eigen::Matrix4f& T_prior, Result& result, bool& stopped) {
+  const FineConfig fine = fine_config(source_fine, config);
+  // The fine pass from the prior needs neither the coarse pass nor its result: it runs on
+  // another core beside them, with the same arithmetic (the same pose on any core count).
+  std::future<FineFit> prior_pass =
+      std::async(std::launch::async, [&] { return refine_point_to_plane(source_fine, surface, T_prior, fine); });
+  Eigen::Matrix4f T_coarse = T_prior;
+  const bool coarse_stopped = coarse_pass(config, source_coarse, target_coarse, T_coarse, result.iterations);
+  const FineFit from_coarse = refine_point_to_plane(source_fine, surface, T_coarse, fine);
+  const FineFit from_prior = prior_pass.get();
+  const auto [cost_prior, cost_coarse] =
+      compare_on_common_points(source_fine, surface, from_prior.T_local_sensor, from_coarse.T_local_sensor, fine);
+  // The prior stands unless the data clearly prefers the coarse result: where both fit about
+  // equally (parallel walls 9 cm apart in the crates scene aliased a 9 cm slide to within
+  // 1 %), moving is a guess; a wrong prior costs several times more than a right one.
+  const bool prior_wins = cost_prior <= 1.1 * cost_coarse;
+  const FineFit& best = prior_wins ? from_prior : from_coarse;
+  result.iterations += best.iterations;
+  result.fine_start = prior_wins ? "prior" : "coarse";
+  stopped = best.converged && (prior_wins || coarse_stopped);
+  return best.T_local_sensor;
+}
+
 }  // namespace
 
 Result align(const std::vector<Eigen::Vector3d>& points_sensor,
@@ -181,26 +211,11 @@ Result align(const std::vector<Eigen::Vector3d>& points_sensor,
     }
   }
 
-  // Coarse pass from the prior; then the robust fine pass from the prior and from the coarse
-  // result, keeping the lower robust cost (point_to_plane.hpp says why).
-  const Eigen::Matrix4f T_prior_f = T_local_sensor_prior.matrix().cast<float>();
-  Eigen::Matrix4f T_coarse = T_prior_f;
-  const bool coarse_stopped = coarse_pass(config, source_coarse, target_coarse, T_coarse, result.iterations);
   const TargetSurface surface(target_fine);
-  const FineConfig fine = fine_config(*source_fine, config);
-  const FineFit from_prior = refine_point_to_plane(*source_fine, surface, T_prior_f, fine);
-  const FineFit from_coarse = refine_point_to_plane(*source_fine, surface, T_coarse, fine);
-  const auto [cost_prior, cost_coarse] =
-      compare_on_common_points(*source_fine, surface, from_prior.T_local_sensor, from_coarse.T_local_sensor, fine);
-  // The prior stands unless the data clearly prefers the coarse result: where both fit about
-  // equally (parallel walls 9 cm apart in the crates scene aliased a 9 cm slide to within
-  // 1 %), moving is a guess; a wrong prior costs several times more than a right one.
-  const bool prior_wins = cost_prior <= 1.1 * cost_coarse;
-  const FineFit& best = prior_wins ? from_prior : from_coarse;
-  result.iterations += best.iterations;
-  result.fine_start = prior_wins ? "prior" : "coarse";
-  const Eigen::Matrix4f T_local_sensor = best.T_local_sensor;
-  const bool stopped = best.converged && (prior_wins || coarse_stopped);
+  bool stopped = false;
+  const Eigen::Matrix4f T_local_sensor =
+      coarse_then_fine(config, source_coarse, target_coarse, *source_fine, surface,
+                       T_local_sensor_prior.matrix().cast<float>(), result, stopped);
 
   const std::size_t inliers = measure_fitness(*source_fine, surface, T_local_sensor, config, result);
 
