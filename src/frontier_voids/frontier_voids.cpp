@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <future>
 
 #include "fvx/map/key_index.hpp"
 
@@ -78,15 +79,20 @@ std::vector<map::VoxelKey> within(const map::OccupancyMap& map, std::vector<map:
 /// Clusters and pairs the frontier and void cells already in `a`.
 void cluster_and_pair(const map::OccupancyMap& map, Analysis& a, bool with_voids, const voids::ClusterConfig& config,
                       int min_void_width_cells) {
-  a.frontier_clusters = frontiers::cluster(map, a.frontier_cells);
-  if (!with_voids) return;
-  if (min_void_width_cells > 1) {
-    const std::size_t all = a.void_cells.size();
-    a.void_cells = voids::cells_in_full_cubes(a.void_cells, min_void_width_cells);
-    a.thin_void_cells = all - a.void_cells.size();
+  // Neither clustering reads the other's cells: the frontier clusters are found on another
+  // core while the voids are clustered here (each result as on one core).
+  std::future<std::vector<frontiers::Cluster>> frontier_clusters =
+      std::async(std::launch::async, [&] { return frontiers::cluster(map, a.frontier_cells); });
+  if (with_voids) {
+    if (min_void_width_cells > 1) {
+      const std::size_t all = a.void_cells.size();
+      a.void_cells = voids::cells_in_full_cubes(a.void_cells, min_void_width_cells);
+      a.thin_void_cells = all - a.void_cells.size();
+    }
+    a.void_clusters = voids::cluster_voids(map, a.void_cells, config);
   }
-  a.void_clusters = voids::cluster_voids(map, a.void_cells, config);
-  a.frontier_voids = pair_frontier_voids(a.void_clusters, a.frontier_clusters);
+  a.frontier_clusters = frontier_clusters.get();
+  if (with_voids) a.frontier_voids = pair_frontier_voids(a.void_clusters, a.frontier_clusters);
 }
 
 }  // namespace
@@ -118,11 +124,13 @@ Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::Al
     return analyse(map, frontier_set, with_voids ? &void_set : nullptr, bounds_m, config, min_void_width_cells);
   }
   const map::DenseGrid grid(map, known);
+  std::future<std::vector<map::VoxelKey>> frontier_cells =  // on another core, beside the voids
+      std::async(std::launch::async, [&] { return frontiers::frontier_cells(grid); });
   voids::Hull hull;
   std::vector<map::VoxelKey> void_cells;
   if (with_voids) void_cells = voids::void_cells(grid, hull, hull_box_m);
   Analysis a = start(stats, bounds_m, with_voids, hull.empty());
-  a.frontier_cells = within(map, frontiers::frontier_cells(grid), a.bounds_m);
+  a.frontier_cells = within(map, frontier_cells.get(), a.bounds_m);
   a.void_cells = within(map, std::move(void_cells), a.bounds_m);
   a.hull_faces = hull.planes.size();
   cluster_and_pair(map, a, with_voids, config, min_void_width_cells);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <iterator>
 #include <limits>
 
@@ -82,13 +83,14 @@ map::Integration integrate_scan(State& state, const scan::Scan& scan, const Conf
 void update_frontiers_and_voids(State& state, const map::Integration& integration, const Config& config, StepResult& r) {
   Stopwatch t0;
   if (config.analyse) {
-    if (!state.analysed) {
-      state.frontier_set.rebuild(state.map);
-      state.void_set.rebuild(state.map, config.hull_in_bounds ? config.bounds_m : std::nullopt);
-    } else {
-      state.frontier_set.update(state.map, integration.changes);
-      state.void_set.update(state.map, integration.changes);
-    }
+    // The two sets read the map and nothing of each other: the frontiers on another core.
+    std::future<void> frontiers_done = std::async(std::launch::async, [&] {
+      if (state.analysed) state.frontier_set.update(state.map, integration.changes);
+      else state.frontier_set.rebuild(state.map);
+    });
+    if (state.analysed) state.void_set.update(state.map, integration.changes);
+    else state.void_set.rebuild(state.map, config.hull_in_bounds ? config.bounds_m : std::nullopt);
+    frontiers_done.get();
     r.analysis = frontier_voids::analyse(state.map, state.frontier_set, &state.void_set, config.bounds_m,
                                          config.clusters, config.min_void_width_cells());
   }
