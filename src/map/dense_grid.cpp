@@ -81,36 +81,78 @@ void distance_1d(const std::vector<float>& f, std::vector<float>& d, std::vector
   }
 }
 
+/// A squared distance above `max_sq` as +infinity: it can only grow in later passes.
+float capped(float d_sq, float max_sq) { return d_sq > max_sq ? INFINITY : d_sq; }
+
+/// Runs part(from, to) over [0, count) split into at most `threads` parts, the first here.
+template <typename Part>
+void in_parts(int count, unsigned threads, Part& part) {
+  const int parts = int(std::min<unsigned>(threads, unsigned(std::max(1, count))));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < parts; ++t) pool.emplace_back(part, count * t / parts, count * (t + 1) / parts);
+  part(0, count / parts);
+  for (auto& t : pool) t.join();
+}
+
+/// Lines along x run in `threads` parts of the y range, one line at a time (each line is
+/// contiguous).
+void transform_x(core::LargeVector<float>& dist, const Eigen::Vector3i& n, unsigned threads, float max_sq) {
+  auto lines = [&](int y_from, int y_to) {
+    std::vector<float> f(static_cast<std::size_t>(n.x())), d(f.size()), z(f.size() + 1);
+    std::vector<int> v(f.size());
+    for (int zc = 0; zc < n.z(); ++zc)
+      for (int y = y_from; y < y_to; ++y) {
+        float* line = dist.data() + (std::size_t(zc) * std::size_t(n.y()) + std::size_t(y)) * std::size_t(n.x());
+        std::copy(line, line + n.x(), f.begin());
+        distance_1d(f, d, v, z);
+        for (int i = 0; i < n.x(); ++i) line[i] = capped(d[std::size_t(i)], max_sq);
+      }
+  };
+  in_parts(n.y(), threads, lines);
+}
+
+/// Lines along y (axis 1) or z (axis 2), kTile neighbouring x at a time: a row of the tile
+/// is one read of contiguous memory, where one line at a time read a cache line per cell.
+/// The parts split the third axis. Each line's transform is the one of transform_x.
+void transform_tiled(core::LargeVector<float>& dist, const Eigen::Vector3i& n, int axis, unsigned threads,
+                     float max_sq) {
+  constexpr int kTile = 16;
+  const int other = 3 - axis;  // the axis that is neither x nor `axis`
+  const std::size_t stride[3] = {1, std::size_t(n.x()), std::size_t(n.x()) * std::size_t(n.y())};
+  const int len = n[axis];
+  auto tiles = [&](int o_from, int o_to) {
+    std::vector<float> tile(std::size_t(len) * kTile), f(static_cast<std::size_t>(len)), d(f.size()), z(f.size() + 1);
+    std::vector<int> v(f.size());
+    for (int o = o_from; o < o_to; ++o)
+      for (int x0 = 0; x0 < n.x(); x0 += kTile) {
+        const int width = std::min(kTile, n.x() - x0);
+        float* base = dist.data() + std::size_t(o) * stride[other] + std::size_t(x0);
+        for (int i = 0; i < len; ++i)
+          std::copy_n(base + std::size_t(i) * stride[axis], width, &tile[std::size_t(i) * kTile]);
+        for (int w = 0; w < width; ++w) {
+          for (int i = 0; i < len; ++i) f[std::size_t(i)] = tile[std::size_t(i) * kTile + std::size_t(w)];
+          distance_1d(f, d, v, z);
+          for (int i = 0; i < len; ++i)
+            tile[std::size_t(i) * kTile + std::size_t(w)] = capped(d[std::size_t(i)], max_sq);
+        }
+        for (int i = 0; i < len; ++i)
+          std::copy_n(&tile[std::size_t(i) * kTile], width, base + std::size_t(i) * stride[axis]);
+      }
+  };
+  in_parts(n[other], threads, tiles);
+}
+
 }  // namespace
 
-core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads) {
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads, float max_sq) {
   const Eigen::Vector3i n = grid.size();
   core::LargeVector<float> dist(grid.cell_count());
   for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = grid.state_at(i) == state ? 0.0f : INFINITY;
-  const std::size_t stride[3] = {1, std::size_t(n.x()), std::size_t(n.x()) * std::size_t(n.y())};
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  for (int axis = 0; axis < 3; ++axis) {
-    const int len = n[axis];
-    // Every line along `axis`: one per cell of the plane of the other two axes (b, c). Lines
-    // are independent: threads take slabs of b, each with its own scratch.
-    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
-    auto lines = [&](int b_from, int b_to) {
-      std::vector<float> f(static_cast<std::size_t>(len)), d(f.size()), z(f.size() + 1);
-      std::vector<int> v(f.size());
-      for (int ob = b_from; ob < b_to; ++ob)
-        for (int oc = 0; oc < n[c]; ++oc) {
-          const std::size_t start = std::size_t(ob) * stride[b] + std::size_t(oc) * stride[c];
-          for (int i = 0; i < len; ++i) f[std::size_t(i)] = dist[start + std::size_t(i) * stride[axis]];
-          distance_1d(f, d, v, z);
-          for (int i = 0; i < len; ++i) dist[start + std::size_t(i) * stride[axis]] = d[std::size_t(i)];
-        }
-    };
-    const int parts = int(std::min<unsigned>(threads, unsigned(std::max(1, n[b]))));
-    std::vector<std::thread> pool;
-    for (int t = 1; t < parts; ++t) pool.emplace_back(lines, n[b] * t / parts, n[b] * (t + 1) / parts);
-    lines(0, n[b] / parts);
-    for (auto& t : pool) t.join();
-  }
+  if (dist.empty()) return dist;
+  transform_x(dist, n, threads, max_sq);
+  transform_tiled(dist, n, 1, threads, max_sq);
+  transform_tiled(dist, n, 2, threads, max_sq);
   return dist;
 }
 

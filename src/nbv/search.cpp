@@ -75,7 +75,12 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   for (const map::VoxelKey& k : hidden_void_cells)
     if (grid.contains(k)) void_label[grid.index(k)] = -1;
   any_hidden = !hidden_void_cells.empty();
-  occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads);
+  // Only "an occupied cell within clearance_m?" is asked of it (keep_position): distances
+  // beyond it, with a cell to spare for rounding, are dropped by the transform (cheaper).
+  const double R = grid.resolution_m();
+  const double clearance_cells_sq = config.clearance_m * config.clearance_m / (R * R);
+  occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads,
+                                                  float(std::floor(clearance_cells_sq) + 1.0));
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   if (config.strategy == Strategy::FrontierVoid && config.coarse_ray_cols > 0 &&
       std::size_t(config.coarse_ray_cols) * std::size_t(config.coarse_ray_rows) < rays_sensor.size())

@@ -121,7 +121,8 @@ struct Search {
   Eigen::AlignedBox3d candidate_box_m;
   map::DenseGrid grid;
   core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
-  core::LargeVector<float> occupied_distance_sq;      ///< per grid cell: to the nearest occupied cell, cells²
+  /// Per grid cell: to the nearest occupied cell, cells²; +infinity beyond the clearance.
+  core::LargeVector<float> occupied_distance_sq;
   std::vector<Eigen::Vector3d> rays_sensor;
   std::vector<Eigen::Vector3d> rays_coarse;  ///< screen_rays(); empty: off
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image

@@ -101,7 +101,11 @@ class DenseGrid {
 /// within the grid (an exact Euclidean distance transform, Felzenszwalb & Huttenlocher 2012,
 /// three separable passes); +infinity when the grid holds no such cell. The lines of each
 /// pass are split over `threads` threads (0: all cores); the result does not depend on it.
-core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads = 0);
+/// Distances above `max_sq` come out as +infinity: a pass drops every value above it, which
+/// no later pass can bring back under it, so what stays is exact and the later passes skip
+/// the dropped cells (a clearance check needs a few cells, not the whole range).
+core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState state, unsigned threads = 0,
+                                             float max_sq = INFINITY);
 
 template <typename Visit>
 RayOutcome DenseGrid::walk_cells(const std::uint8_t* cells, const Eigen::Vector3d& origin_m,

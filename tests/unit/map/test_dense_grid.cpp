@@ -122,6 +122,15 @@ TEST(DenseGrid, SquaredDistanceToOccupiedEqualsBruteForce) {
       ASSERT_EQ(d[i], float(best)) << "cell " << i << ", threads " << threads;
     }
   }
+  // With a largest distance: the exact value up to it, +infinity beyond (the passes drop
+  // values above it as they go).
+  const auto exact = squared_distance_to(grid, VoxelState::Occupied, 1);
+  for (const float max_sq : {0.0f, 2.0f, 5.0f, 30.0f})
+    for (const unsigned threads : {1u, 3u}) {
+      const auto capped = squared_distance_to(grid, VoxelState::Occupied, threads, max_sq);
+      for (std::size_t i = 0; i < grid.cell_count(); ++i)
+        ASSERT_EQ(capped[i], exact[i] <= max_sq ? exact[i] : INFINITY) << "cell " << i << ", max " << max_sq;
+    }
   // No cell in that state: infinity everywhere.
   OccupancyMap free_only(0.1);
   free_only.set_state({32768, 32768, 32768}, VoxelState::Free);
