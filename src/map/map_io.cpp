@@ -86,6 +86,7 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
     if (in.fail()) throw FileError(path, "truncated .bt file" + capture.text());
     OccupancyMap map(probe.getResolution());
     map.impl_->tree.swapContent(probe);
+    map.impl_->tree.check_inner_nodes();
     return map;
   }
 
@@ -109,6 +110,7 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
     throw FileError(path, "holds an OctoMap '" + tree->getTreeType() +
                               "', which is not an occupancy tree fvx can read");
   }
+  mine.check_inner_nodes();
   return map;
 }
 

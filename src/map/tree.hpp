@@ -13,24 +13,61 @@ class Tree : public octomap::OcTree {
   explicit Tree(double resolution_m) : octomap::OcTree(resolution_m) {}
 
   /// OctoMap's updateNode(key, hit) (non-lazy), also returning the node found before the
-  /// update: the same early abort at the clamping bounds and the same recursion, with one
-  /// search shared by both, where search() + updateNode() would descend three times.
+  /// update (search()'s result): the same early abort at the clamping bounds, the same
+  /// expansion, creation and pruning, and the same values, in one descent where search() +
+  /// updateNode() descended three times. On the way back up OctoMap prunes what became
+  /// collapsible and sets every other node to the max of its children, up to the root; once
+  /// a node that existed is neither pruned nor changed in value, nothing above it changes
+  /// either, so the update stops there. That needs every inner node to hold the max of its
+  /// children before the update, which OctoMap's own updates keep; a loaded tree is checked
+  /// (check_inner_nodes), and one that fails takes OctoMap's recursion instead.
   std::pair<const octomap::OcTreeNode*, const octomap::OcTreeNode*> update_cell(
       const octomap::OcTreeKey& key, bool hit, float& log_odds_before) {
     const float update = hit ? prob_hit_log : prob_miss_log;
-    octomap::OcTreeNode* leaf = search(key);
+    octomap::OcTreeNode* path[17];
+    bool created[17] = {};
+    unsigned found = 0;  // the depth where search() stops
+    if (root) {
+      path[0] = root;
+      for (; found < tree_depth; ++found) {
+        const unsigned pos = octomap::computeChildIdx(key, int(tree_depth - 1 - found));
+        if (!nodeChildExists(path[found], pos)) break;
+        path[found + 1] = getNodeChild(path[found], pos);
+      }
+    }
+    octomap::OcTreeNode* leaf = nullptr;  // search()'s answer: a pruned leaf is the cell's node
+    if (root && (found == tree_depth || !nodeHasChildren(path[found]))) leaf = path[found];
     if (leaf) log_odds_before = leaf->getLogOdds();
     if (leaf && ((update >= 0 && leaf->getLogOdds() >= clamping_thres_max) ||
                  (update <= 0 && leaf->getLogOdds() <= clamping_thres_min)))
       return {leaf, leaf};
-    bool created_root = false;
     if (!root) {
       root = new octomap::OcTreeNode();
       ++tree_size;
-      created_root = true;
+      path[0] = root;
+      created[0] = true;
     }
-    return {leaf, updateNodeRecurs(root, created_root, key, 0, update, false)};
+    if (!inner_max_) return {leaf, updateNodeRecurs(root, created[0], key, 0, update, false)};
+    for (unsigned d = found; d < tree_depth; ++d) {  // updateNodeRecurs's way down from there
+      const unsigned pos = octomap::computeChildIdx(key, int(tree_depth - 1 - d));
+      if (!nodeChildExists(path[d], pos)) {
+        if (!nodeHasChildren(path[d]) && !created[d]) {
+          expandNode(path[d]);
+        } else {
+          createNodeChild(path[d], pos);
+          created[d + 1] = true;
+        }
+      }
+      path[d + 1] = getNodeChild(path[d], pos);
+    }
+    updateNodeLogOdds(path[tree_depth], update);
+    return {leaf, update_ancestors(path, created)};
   }
+
+  /// Whether every inner node holds the max of its children's log-odds (update_cell's early
+  /// stop relies on it); remembered for update_cell.
+  void check_inner_nodes() { inner_max_ = !root || holds_max(root); }
+  bool inner_nodes_hold_max() const { return inner_max_; }
 
   /// Copies the structure and log-odds of any occupancy tree of the same resolution.
   template <typename SourceTree>
@@ -45,6 +82,33 @@ class Tree : public octomap::OcTree {
   }
 
  private:
+  /// update_cell's way up from the updated leaf path[tree_depth]: returns the node that holds
+  /// the cell afterwards (the highest node pruned into one leaf, or the leaf).
+  octomap::OcTreeNode* update_ancestors(octomap::OcTreeNode* const* path, const bool* created) {
+    octomap::OcTreeNode* result = path[tree_depth];
+    for (int d = int(tree_depth) - 1; d >= 0; --d) {
+      octomap::OcTreeNode* node = path[d];
+      if (pruneNode(node)) {
+        result = node;
+        continue;
+      }
+      const float before = node->getLogOdds();
+      node->updateOccupancyChildren();
+      if (!created[d] && node->getLogOdds() == before) break;  // the nodes above hold their max already
+    }
+    return result;
+  }
+
+  bool holds_max(const octomap::OcTreeNode* node) const {
+    if (!nodeHasChildren(node)) return true;
+    if (node->getLogOdds() != node->getMaxChildLogOdds()) return false;
+    for (unsigned i = 0; i < 8; ++i)
+      if (nodeChildExists(node, i) && !holds_max(getNodeChild(node, i))) return false;
+    return true;
+  }
+
+  bool inner_max_ = true;  ///< every inner node holds the max of its children (an empty tree does)
+
   template <typename SourceTree, typename SourceNode>
   void copy_children(const SourceTree& source, const SourceNode* from, octomap::OcTreeNode* to) {
     for (unsigned i = 0; i < 8; ++i) {

@@ -5,9 +5,11 @@
 
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 
+#include "../../../src/map/tree.hpp"
 #include "fvx/map/occupancy_map.hpp"
 #include "slambook.hpp"
 #include "test_support.hpp"
@@ -82,6 +84,58 @@ INSTANTIATE_TEST_SUITE_P(
                       MatchCase{"threaded", 4.0, 12000, 0, 0.05},
                       MatchCase{"sparse_blocks", std::numeric_limits<double>::infinity(), 2000, 40.0, 0.025}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
+
+// A map loaded from a file, then integrated: the same tree as OctoMap's from the same file.
+// OctoMap's own updates keep every inner node at the max of its children, which lets
+// update_cell stop early on the way up; a tree written after lazy updates, or with a stale
+// root, does not hold that, and must be updated as OctoMap's recursion does.
+TEST(Integrate, ALoadedTreeIsUpdatedAsOctoMapUpdatesIt) {
+  enum class Start { Updated, Lazy, StaleRoot };
+  for (const Start how : {Start::Updated, Start::Lazy, Start::StaleRoot}) {
+    const test::TempDir dir;
+    std::mt19937 rng(11);
+    octomap::OcTree start(0.05);
+    for (int s = 0; s < 2; ++s) {
+      const Eigen::Vector3f origin(0.2f * s, 0.1f, 0.5f);
+      start.insertPointCloud(to_octomap(random_scan(rng, origin, 2000)),
+                             octomap::point3d(origin.x(), origin.y(), origin.z()), -1.0, how == Start::Lazy);
+    }
+    if (how == Start::StaleRoot) start.getRoot()->setLogOdds(7.0f);  // not the max of its children
+    ASSERT_TRUE(start.write(dir / "start.ot"));
+    OccupancyMap map = OccupancyMap::load(dir / "start.ot");
+    std::unique_ptr<octomap::AbstractOcTree> read(octomap::AbstractOcTree::read(dir / "start.ot"));
+    auto* reference = dynamic_cast<octomap::OcTree*>(read.get());
+    ASSERT_NE(reference, nullptr);
+    for (int s = 0; s < 3; ++s) {
+      const Eigen::Vector3f origin(-0.3f * s, 0.2f, 0.4f);
+      const auto points = random_scan(rng, origin, 2000);
+      map.integrate(points, origin);
+      reference->insertPointCloud(to_octomap(points), octomap::point3d(origin.x(), origin.y(), origin.z()));
+    }
+    map.save(dir / "fvx.ot");
+    ASSERT_TRUE(reference->write(dir / "octomap.ot"));
+    EXPECT_EQ(file_bytes(dir / "fvx.ot"), file_bytes(dir / "octomap.ot")) << "start " << int(how);
+  }
+}
+
+// What update_cell's early stop relies on, checked on trees OctoMap itself updated.
+TEST(Integrate, TheInnerNodeCheckTellsUpdatedTreesFromStaleOnes) {
+  std::mt19937 rng(3);
+  const auto points = to_octomap(random_scan(rng, Eigen::Vector3f(0, 0, 0.5f), 2000));
+  Tree updated(0.05), lazy(0.05);
+  updated.insertPointCloud(points, octomap::point3d(0, 0, 0.5f));
+  lazy.insertPointCloud(points, octomap::point3d(0, 0, 0.5f), -1.0, true);
+  updated.check_inner_nodes();
+  lazy.check_inner_nodes();
+  EXPECT_TRUE(updated.inner_nodes_hold_max());
+  EXPECT_FALSE(lazy.inner_nodes_hold_max());
+  lazy.updateInnerOccupancy();
+  lazy.check_inner_nodes();
+  EXPECT_TRUE(lazy.inner_nodes_hold_max());
+  updated.getRoot()->setLogOdds(7.0f);
+  updated.check_inner_nodes();
+  EXPECT_FALSE(updated.inner_nodes_hold_max());
+}
 
 TEST(Integrate, ChangeSetEqualsBruteForceDifference) {
   const double R = 0.1;
