@@ -67,15 +67,6 @@ Analysis start(const map::Stats& stats, const std::optional<Eigen::AlignedBox3d>
   return a;
 }
 
-/// The cells whose centres lie in `bounds_m`, order kept.
-std::vector<map::VoxelKey> within(const map::OccupancyMap& map, std::vector<map::VoxelKey> cells,
-                                  const Eigen::AlignedBox3d& bounds_m) {
-  cells.erase(std::remove_if(cells.begin(), cells.end(),
-                             [&](const map::VoxelKey& k) { return !bounds_m.contains(map.center_of(k)); }),
-              cells.end());
-  return cells;
-}
-
 /// Clusters and pairs the frontier and void cells already in `a`.
 void cluster_and_pair(const map::OccupancyMap& map, Analysis& a, bool with_voids, const voids::ClusterConfig& config,
                       int min_void_width_cells) {
@@ -130,8 +121,8 @@ Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::Al
   std::vector<map::VoxelKey> void_cells;
   if (with_voids) void_cells = voids::void_cells(grid, hull, hull_box_m);
   Analysis a = start(stats, bounds_m, with_voids, hull.empty());
-  a.frontier_cells = within(map, frontier_cells.get(), a.bounds_m);
-  a.void_cells = within(map, std::move(void_cells), a.bounds_m);
+  a.frontier_cells = map::keys_within(map, frontier_cells.get(), a.bounds_m);
+  a.void_cells = map::keys_within(map, std::move(void_cells), a.bounds_m);
   a.hull_faces = hull.planes.size();
   cluster_and_pair(map, a, with_voids, config, min_void_width_cells);
   return a;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <numeric>
 
-#include "fvx/map/key_index.hpp"
 #include "fvx/map/sort_keys.hpp"
 
 namespace fvx::frontiers {
@@ -112,12 +111,7 @@ bool FrontierSet::contains(const map::VoxelKey& key) const {
 
 std::vector<map::VoxelKey> FrontierSet::cells(const map::OccupancyMap& map,
                                               const std::optional<Eigen::AlignedBox3d>& bounds_m) const {
-  if (!bounds_m) return cells_;
-  std::vector<map::VoxelKey> out;
-  out.reserve(cells_.size());
-  for (const map::VoxelKey& k : cells_)
-    if (bounds_m->contains(map.center_of(k))) out.push_back(k);
-  return out;
+  return bounds_m ? map::keys_within(map, cells_, *bounds_m) : cells_;
 }
 
 namespace {

@@ -237,4 +237,12 @@ Stats OccupancyMap::stats() const {
   return s;
 }
 
+std::vector<VoxelKey> keys_within(const OccupancyMap& map, std::vector<VoxelKey> keys,
+                                  const Eigen::AlignedBox3d& bounds_m) {
+  keys.erase(std::remove_if(keys.begin(), keys.end(),
+                            [&](const VoxelKey& k) { return !bounds_m.contains(map.center_of(k)); }),
+             keys.end());
+  return keys;
+}
+
 }  // namespace fvx::map

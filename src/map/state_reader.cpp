@@ -21,23 +21,9 @@ VoxelState StateReader::operator()(const VoxelKey& key) {
   } else {
     path_[0] = tree.getRoot();
   }
-  // OcTreeBaseImpl::search from path_[from]: a missing child of a childless node is that
-  // node (a pruned leaf); of a node with children, an unknown cell.
-  const octomap::OcTreeKey k = to_octree_key(key);
-  auto node = static_cast<const octomap::OcTreeNode*>(path_[from]);
   last_ = key;
-  for (int d = from; d < depth; ++d) {
-    const unsigned child = octomap::computeChildIdx(k, depth - 1 - d);
-    if (!tree.nodeChildExists(node, child)) {
-      reached_ = d;
-      last_state_ = tree.nodeHasChildren(node) ? VoxelState::Unknown : state_of(tree, node);
-      return last_state_;
-    }
-    node = tree.getNodeChild(node, child);
-    path_[d + 1] = node;
-  }
-  reached_ = depth;
-  last_state_ = state_of(tree, node);
+  reached_ = int(tree.descend(to_octree_key(key), path_, unsigned(from)));
+  last_state_ = state_of(tree, tree.found_node(path_, unsigned(reached_)));
   return last_state_;
 }
 

@@ -27,16 +27,12 @@ class Tree : public octomap::OcTree {
     octomap::OcTreeNode* path[17];
     bool created[17] = {};
     unsigned found = 0;  // the depth where search() stops
+    octomap::OcTreeNode* leaf = nullptr;  // search()'s answer
     if (root) {
       path[0] = root;
-      for (; found < tree_depth; ++found) {
-        const unsigned pos = octomap::computeChildIdx(key, int(tree_depth - 1 - found));
-        if (!nodeChildExists(path[found], pos)) break;
-        path[found + 1] = getNodeChild(path[found], pos);
-      }
+      found = descend(key, path, 0);
+      leaf = found_node(path, found);
     }
-    octomap::OcTreeNode* leaf = nullptr;  // search()'s answer: a pruned leaf is the cell's node
-    if (root && (found == tree_depth || !nodeHasChildren(path[found]))) leaf = path[found];
     if (leaf) log_odds_before = leaf->getLogOdds();
     if (leaf && ((update >= 0 && leaf->getLogOdds() >= clamping_thres_max) ||
                  (update <= 0 && leaf->getLogOdds() <= clamping_thres_min)))
@@ -62,6 +58,29 @@ class Tree : public octomap::OcTree {
     }
     updateNodeLogOdds(path[tree_depth], update);
     return {leaf, update_ancestors(path, created)};
+  }
+
+  /// OcTreeBaseImpl::search's descent for `key` from path[from] (the node at depth `from`):
+  /// fills path[from + 1 …] and returns the depth where it stops, tree_depth or that of a
+  /// node without the child `key` needs. `Node`: OcTreeNode or const OcTreeNode.
+  template <typename Node>
+  unsigned descend(const octomap::OcTreeKey& key, Node** path, unsigned from) const {
+    unsigned d = from;
+    for (; d < tree_depth; ++d) {
+      const unsigned pos = octomap::computeChildIdx(key, int(tree_depth - 1 - d));
+      if (!nodeChildExists(path[d], pos)) break;
+      // The const accessor of a const method; the nodes are the caller's to change or not.
+      path[d + 1] = const_cast<Node*>(getNodeChild(path[d], pos));
+    }
+    return d;
+  }
+
+  /// search()'s answer where descend() stopped at `depth`: the node at the finest depth; a
+  /// node without children above it (a pruned leaf holds the cell); none where the node has
+  /// other children (the cell is unknown).
+  template <typename Node>
+  Node* found_node(Node* const* path, unsigned depth) const {
+    return depth == tree_depth || !nodeHasChildren(path[depth]) ? path[depth] : nullptr;
   }
 
   /// Whether every inner node holds the max of its children's log-odds (update_cell's early

@@ -270,9 +270,8 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
   }
   // integrate()'s change sets are in key order; a change set made otherwise need not be.
   if (!std::is_sorted(known.begin(), known.end())) map::sort_keys(known);
-  std::vector<map::VoxelKey> added, removed;
   if (outside.empty() && !vertex_lost) {
-    s.cells = merge(s.cells, added, known);
+    s.cells = merge(s.cells, {}, known);
     return;
   }
   const Hull before = s.hull;
@@ -284,6 +283,7 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
     s.hull = hull_of(map, outside, s.vertices);
   }
   // A cell the scan made known is never added again (rescan adds only unknown cells).
+  std::vector<map::VoxelKey> added, removed;
   rescan(map, before, s.hull, added, removed);
   std::vector<map::VoxelKey> gone;
   std::set_union(known.begin(), known.end(), removed.begin(), removed.end(), std::back_inserter(gone));
@@ -292,12 +292,7 @@ void VoidSet::update(const map::OccupancyMap& map, const std::vector<map::Change
 
 std::vector<map::VoxelKey> VoidSet::cells(const map::OccupancyMap& map,
                                           const std::optional<Eigen::AlignedBox3d>& bounds_m) const {
-  if (!bounds_m) return state_->cells;
-  std::vector<map::VoxelKey> out;
-  out.reserve(state_->cells.size());
-  for (const map::VoxelKey& k : state_->cells)
-    if (bounds_m->contains(map.center_of(k))) out.push_back(k);
-  return out;
+  return bounds_m ? map::keys_within(map, state_->cells, *bounds_m) : state_->cells;
 }
 
 }  // namespace fvx::voids

@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+namespace octomap {
+class OcTreeNode;
+}
+
 namespace fvx::map {
 
 /// Tri-state cell state: a cell without data is Unknown; otherwise its occupancy probability
@@ -186,10 +190,15 @@ class StateReader {
 
  private:
   const OccupancyMap::Impl& impl_;
-  const void* path_[17] = {};  ///< path_[d]: the last key's node at depth d, for d <= reached_
+  const octomap::OcTreeNode* path_[17] = {};  ///< path_[d]: the last key's node at depth d, for d <= reached_
   int reached_ = -1;           ///< the depth where the last look-up ended; −1: none yet
   VoxelKey last_;
   VoxelState last_state_ = VoxelState::Unknown;
 };
+
+/// The keys whose cell centres lie in `bounds_m`, order kept (the search space S filters
+/// the frontier and void sets at query time).
+std::vector<VoxelKey> keys_within(const OccupancyMap& map, std::vector<VoxelKey> keys,
+                                  const Eigen::AlignedBox3d& bounds_m);
 
 }  // namespace fvx::map
