@@ -49,13 +49,27 @@ int TargetSurface::nearest(const Eigen::Vector3f& q, float limit_sq, float& dist
   return result.index();
 }
 
+int TargetSurface::nearest_near(const Eigen::Vector3f& q, float limit_sq, int hint, float& distance_sq) const {
+  if (hint < 0) return nearest(q, limit_sq, distance_sq);
+  // The hint's squared distance as nanoflann's L2_Simple_Adaptor sums it (float, x then y
+  // then z), so that the hint itself passes the search's strict test against the bound.
+  const float* p = cloud_->points[std::size_t(hint)].data;
+  float hint_sq = 0.0f;
+  for (int a = 0; a < 3; ++a) {
+    const float d = q[a] - p[a];
+    hint_sq += d * d;
+  }
+  const int found = nearest(q, std::min(limit_sq, hint_sq), distance_sq);
+  return found >= 0 ? found : nearest(q, limit_sq, distance_sq);
+}
+
 namespace {
 
 /// The residual of a source point at q: to the plane of its partner, or to the partner.
-/// Returns false without a partner.
+/// Returns false without a partner. `partner` comes in as the hint (nearest_near), or -1.
 bool residual(const TargetSurface& target, const Eigen::Vector3f& q, float limit_sq, int& partner, double& r) {
   float distance_sq = 0;
-  partner = target.nearest(q, limit_sq, distance_sq);
+  partner = target.nearest_near(q, limit_sq, partner, distance_sq);
   if (partner < 0) return false;
   r = target.planar(partner) ? double(target.normal(partner).dot(q - target.cloud().points[std::size_t(partner)].getVector3fMap()))
                              : std::sqrt(double(distance_sq));
@@ -70,7 +84,7 @@ double robust_cost(const Cloud& source, const TargetSurface& target, const Eigen
   double sum = 0.0;
   for (const auto& p : source.points) {
     const Eigen::Vector3f q = (T * Eigen::Vector4f(p.x, p.y, p.z, 1.0f)).head<3>();
-    int partner;
+    int partner = -1;
     double r;
     sum += residual(target, q, c.limit_m * c.limit_m, partner, r) ? r * r / (s2 + r * r) : 1.0;
   }
@@ -85,7 +99,7 @@ std::pair<double, double> compare_on_common_points(const Cloud& source, const Ta
   std::size_t common = 0;
   for (const auto& p : source.points) {
     const Eigen::Vector4f h(p.x, p.y, p.z, 1.0f);
-    int partner;
+    int partner = -1;
     double r_a, r_b;
     if (!residual(target, (T_a * h).head<3>(), c.limit_m * c.limit_m, partner, r_a) ||
         !residual(target, (T_b * h).head<3>(), c.limit_m * c.limit_m, partner, r_b))
@@ -103,6 +117,7 @@ FineFit refine_point_to_plane(const Cloud& source, const TargetSurface& target, 
   FineFit fit;
   Eigen::Matrix4d T = T_start.cast<double>();
   const double s2 = c.scale_m * c.scale_m;
+  std::vector<int> partners(source.size(), -1);  // each point's partner in the iteration before
   for (fit.iterations = 1; fit.iterations <= c.max_iterations; ++fit.iterations) {
     // Rotations are scaled by the length L so that both halves of the step are in metres.
     const double L = c.length_scale_m;
@@ -110,9 +125,10 @@ FineFit refine_point_to_plane(const Cloud& source, const TargetSurface& target, 
     Vector6d g = Vector6d::Zero();
     double weight_sum = 0.0;
     std::size_t used = 0;
-    for (const auto& p : source.points) {
+    for (std::size_t i = 0; i < source.size(); ++i) {
+      const auto& p = source.points[i];
       const Eigen::Vector3d q = (T * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
-      int partner;
+      int& partner = partners[i];
       double r;
       if (!residual(target, q.cast<float>(), c.limit_m * c.limit_m, partner, r) || !target.planar(partner)) continue;
       const Eigen::Vector3d n = target.normal(partner).cast<double>();

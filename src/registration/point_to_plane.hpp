@@ -25,6 +25,11 @@ class TargetSurface {
   ~TargetSurface();
   /// Index of the nearest target point within sqrt(limit_sq), or -1.
   int nearest(const Eigen::Vector3f& q, float limit_sq, float& distance_sq) const;
+  /// nearest(), given a target point `hint` (or -1) that is probably near q: the search
+  /// starts with the hint's distance as its bound, which no nearer point can exceed, so
+  /// that it prunes from the first node instead of from the first leaf. Between Gauss–
+  /// Newton iterations a source point's partner rarely moves by more than a neighbour.
+  int nearest_near(const Eigen::Vector3f& q, float limit_sq, int hint, float& distance_sq) const;
   const Cloud& cloud() const { return *cloud_; }
   bool planar(int i) const { return planar_[std::size_t(i)] != 0; }
   const Eigen::Vector3f& normal(int i) const { return normals_[std::size_t(i)]; }
