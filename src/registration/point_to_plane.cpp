@@ -51,14 +51,9 @@ int TargetSurface::nearest(const Eigen::Vector3f& q, float limit_sq, float& dist
 
 int TargetSurface::nearest_near(const Eigen::Vector3f& q, float limit_sq, int hint, float& distance_sq) const {
   if (hint < 0) return nearest(q, limit_sq, distance_sq);
-  // The hint's squared distance as nanoflann's L2_Simple_Adaptor sums it (float, x then y
-  // then z), so that the hint itself passes the search's strict test against the bound.
-  const float* p = cloud_->points[std::size_t(hint)].data;
-  float hint_sq = 0.0f;
-  for (int a = 0; a < 3; ++a) {
-    const float d = q[a] - p[a];
-    hint_sq += d * d;
-  }
+  // The hint's squared distance by the tree's own metric, so that the hint itself passes
+  // the search's strict test against the bound.
+  const float hint_sq = tree_->index.distance.evalMetric(q.data(), std::uint32_t(hint), 3);
   const int found = nearest(q, std::min(limit_sq, hint_sq), distance_sq);
   return found >= 0 ? found : nearest(q, limit_sq, distance_sq);
 }
