@@ -59,7 +59,8 @@ struct ReplayView {
 };
 
 /// Runs the scans in order. `on_map` gets each view's number and the state right after its
-/// scan is integrated and analysed (the map, before the next scan changes it); `on_view` then
+/// scan is integrated and analysed (the map, before the next scan changes it), on a thread of
+/// its own while the view's search is prepared: it must only read the state; `on_view` then
 /// gets the view with its search, after on_map of the view and before on_map of the next
 /// one. The search of view i runs while scan i + 1 is registered, integrated and analysed;
 /// the results are those of one pipeline::run_step() per scan. A scan that fails to load
