@@ -22,8 +22,9 @@
 #  - next best view at scale: the whole fvx nbv on the real slambook and geb079 maps, sampled
 #    against exact accumulation, seeds 1-4 (scripts/bench-nbv-scale.sh; FVX_REAL_DATA);
 #  - replay with a search after every view: the whole fvx replay on the 211 Redwood frames and
-#    the five slambook frames at 2.5 cm, frames/s and peak memory (scripts/bench-replay.sh;
-#    FVX_BASELINE=/path/to/fvx adds another binary in the same run; FVX_REAL_DATA);
+#    the five slambook frames at 2.5 cm, frames/s and peak memory, and the same without any
+#    search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx adds another binary in the
+#    same run; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
 set -euo pipefail
