@@ -12,6 +12,21 @@
 
 namespace fvx::capmap {
 
+const char* to_string(BuildMethod method) {
+  switch (method) {
+    case BuildMethod::FkWitness: return "fk-witness";
+    case BuildMethod::FkSeededIk: return "fk-seeded-ik";
+    case BuildMethod::ExhaustiveIk: return "exhaustive-ik";
+  }
+  return "?";
+}
+
+BuildMethod parse_build_method(const std::string& name, const std::string& what) {
+  for (const BuildMethod m : {BuildMethod::FkWitness, BuildMethod::FkSeededIk, BuildMethod::ExhaustiveIk})
+    if (name == to_string(m)) return m;
+  throw UsageError(what + " '" + name + "': expected fk-witness, fk-seeded-ik or exhaustive-ik");
+}
+
 std::vector<std::string> BuildConfig::validate() const {
   std::vector<std::string> problems;
   if (!(voxel_m > 0.0) || !std::isfinite(voxel_m)) problems.push_back("voxel_m must be > 0 m");
@@ -19,7 +34,8 @@ std::vector<std::string> BuildConfig::validate() const {
   if (!(position_tolerance_m > 0.0)) problems.push_back("position_tolerance_m must be > 0 m");
   if (!(angle_tolerance_rad >= 0.0 && angle_tolerance_rad < M_PI)) problems.push_back("angle_tolerance_rad must be in [0, pi)");
   if (ik_restarts < 0) problems.push_back("ik_restarts must be >= 0");
-  if (workspace_samples < 10 || fk_samples < 1) problems.push_back("workspace_samples and fk_samples must be positive");
+  if (workspace_samples < 10) problems.push_back("workspace_samples must be at least 10");
+  if (!(target_recall > 0.0 && target_recall <= 1.0)) problems.push_back("target_recall must be in (0, 1]");
   if (shard_count < 1 || shard_index >= shard_count) problems.push_back("shard_index must be below shard_count");
   return problems;
 }
@@ -75,7 +91,7 @@ CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const Dir
   h.directions = config.directions;
   h.position_tolerance_m = config.position_tolerance_m;
   h.angle_tolerance_rad = config.angle_tolerance_rad > 0 ? config.angle_tolerance_rad : 0.5 * directions.mean_spacing_rad();
-  h.method = config.exhaustive ? "exhaustive-ik" : "fk-seeded-ik";
+  h.method = to_string(config.method);
   h.seed = config.seed;
   h.shard_index = config.shard_index;
   h.shard_count = config.shard_count;
@@ -92,14 +108,14 @@ std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config,
   const std::uint32_t z_begin = h.dims[2] * config.shard_index / config.shard_count;
   const std::uint32_t z_end = h.dims[2] * (config.shard_index + 1) / config.shard_count;
   std::vector<Candidate> candidates;
-  if (config.exhaustive) {
+  if (config.method == BuildMethod::ExhaustiveIk) {
     for (std::int64_t voxel = std::int64_t(z_begin) * layer; voxel < std::int64_t(z_end) * layer; ++voxel)
       for (int d = 0; d < directions.size(); ++d) candidates.push_back({voxel, d, {}});
     return candidates;
   }
   std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
   std::mt19937_64 fk_rng(mix(config.seed, 2));
-  for (std::size_t i = 0; i < config.fk_samples; ++i) {
+  for (std::size_t i = 0, n = config.fk_samples ? config.fk_samples : 400000; i < n; ++i) {
     const Eigen::VectorXd q = random_configuration(arm, fk_rng);
     const Eigen::Isometry3d T = arm.fk(q);
     const std::int64_t voxel = map.voxel_of(T.translation());
@@ -115,6 +131,59 @@ std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config,
   return candidates;
 }
 
+/// The bit of the sensor pose at `q`: (voxel, nearest direction) as one number, −1 outside.
+std::int64_t witness_bit(const Arm& arm, const CapabilityMap& map, const Eigen::VectorXd& q) {
+  const Eigen::Isometry3d T = arm.fk(q);
+  const std::int64_t voxel = map.voxel_of(T.translation());
+  if (voxel < 0) return -1;
+  return voxel * map.directions().size() + map.directions().nearest(T.linear() * arm.config().viewing_axis_sensor);
+}
+
+/// The fk-witness build: rounds of FK samples set the bits they land in, on all cores, until
+/// a round's share of samples on bits set before it reaches the target recall.
+void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& map, BuildStats& s,
+                     const std::function<void(std::size_t, std::size_t)>& progress, const std::atomic<bool>* cancel) {
+  const CapabilityHeader& h = map.header();
+  const std::int64_t directions = h.directions;
+  const std::size_t bits = std::size_t(h.dims[0]) * h.dims[1] * h.dims[2] * std::size_t(directions);
+  std::vector<std::uint64_t> set((bits + 63) / 64, 0);  // every bit of the grid, for the estimate
+  const std::size_t limit = config.fk_samples ? config.fk_samples : std::size_t(1) << 27;
+  constexpr std::size_t kChunk = 4096;  // a generator per chunk: thread-count independent
+  const unsigned threads = std::max(1u, config.threads ? config.threads : std::thread::hardware_concurrency());
+  for (std::size_t round = 0; s.fk_samples < limit && !(cancel && cancel->load()); ++round) {
+    const std::size_t n = std::min(kWitnessRound, limit - s.fk_samples), chunks = (n + kChunk - 1) / kChunk;
+    std::vector<std::int64_t> landed(n);
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
+        std::mt19937_64 rng(mix(mix(config.seed, 3 + round), c));
+        for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
+          landed[i] = witness_bit(arm, map, random_configuration(arm, rng));
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    std::size_t known = 0;  // samples on bits set by earlier rounds
+    for (const std::int64_t b : landed) known += b >= 0 && (set[std::size_t(b) / 64] >> (b % 64) & 1u);
+    for (const std::int64_t b : landed)
+      if (b >= 0) set[std::size_t(b) / 64] |= std::uint64_t(1) << (b % 64);
+    s.fk_samples += n;
+    if (round > 0) s.estimated_recall = double(known) / double(n);
+    if (progress) progress(s.fk_samples, limit);
+    if (round > 0 && s.estimated_recall >= config.target_recall) break;
+  }
+  const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
+  const std::int64_t begin = std::int64_t(h.dims[2] * config.shard_index / config.shard_count) * layer;
+  const std::int64_t end = std::int64_t(h.dims[2] * (config.shard_index + 1) / config.shard_count) * layer;
+  for (std::int64_t b = begin * directions; b < end * directions; ++b)
+    if (set[std::size_t(b) / 64] >> (b % 64) & 1u) {
+      map.set(b / directions, int(b % directions));
+      ++s.reached;
+    }
+}
+
 }  // namespace
 
 CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, BuildStats* stats,
@@ -123,6 +192,12 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
   throw_if_problems("capmap build", config.validate());
   const DirectionSet directions(config.directions);
   CapabilityMap map(header_for(arm, config, directions));
+  if (config.method == BuildMethod::FkWitness) {
+    BuildStats s;
+    build_witnesses(arm, config, map, s, progress, cancel);
+    if (stats) *stats = s;
+    return map;
+  }
   const CapabilityHeader& h = map.header();
   const std::vector<Candidate> candidates = candidates_for(arm, config, directions, map);
 

@@ -158,10 +158,15 @@ CapabilityMap CapabilityMap::merge(const std::vector<CapabilityMap>& shards) {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'V', 'X', 'C', 'M', 'A', 'P', '\n'};
-constexpr std::uint32_t kVersion = 1;
+/// Version 2 names the bit definition in the header's `method` (fk-witness maps are new in
+/// it: an older fvx must not read them as centre bits) and checksums with FNV-1a's own
+/// offset basis; version 1 files (IK at the voxel centre) are still read.
+constexpr std::uint32_t kVersion = 2;
+constexpr std::uint64_t kFnvBasis = 14695981039346656037ull;
+constexpr std::uint64_t kFnvBasisVersion1 = 1469598103934665603ull;  ///< a digit short: version 1's
 
-std::uint64_t fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t basis) {
+  std::uint64_t h = basis;
   for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
   return h;
 }
@@ -225,7 +230,7 @@ void CapabilityMap::save(const std::string& path) const {
     put<std::uint16_t>(out, count);
     for (std::uint64_t w : words) put<std::uint64_t>(out, w);
   }
-  put<std::uint64_t>(out, fnv1a(out));
+  put<std::uint64_t>(out, fnv1a(out, kFnvBasis));
   write_file_atomically(path, [&](std::ostream& s) { s.write(out.data(), std::streamsize(out.size())); });
 }
 
@@ -241,10 +246,10 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   const std::string body = bytes.substr(0, bytes.size() - 8);
   Reader r{body, sizeof kMagic, path};
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion)
-    throw FileError(path, "capability map format version " + std::to_string(version) + "; this fvx reads version " +
+  if (version != 1 && version != kVersion)
+    throw FileError(path, "capability map format version " + std::to_string(version) + "; this fvx reads versions 1 to " +
                               std::to_string(kVersion));
-  if (fnv1a(body) != stored) throw FileError(path, "checksum mismatch: the capability map is corrupt or truncated");
+  if (fnv1a(body, version == 1 ? kFnvBasisVersion1 : kFnvBasis) != stored) throw FileError(path, "checksum mismatch: the capability map is corrupt or truncated");
   const auto header_size = r.get<std::uint32_t>();
   if (r.at + header_size > body.size()) throw FileError(path, "truncated capability map");
   CapabilityHeader h;
@@ -273,6 +278,10 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   }
   if (!(h.voxel_m > 0) || h.directions < 1 || h.shard_count < 1 || h.shard_index >= h.shard_count)
     throw FileError(path, "bad capability-map header values");
+  if (h.method != "fk-witness" && h.method != "fk-seeded-ik" && h.method != "exhaustive-ik")
+    throw FileError(path, "unknown bit definition '" + h.method + "' (method); this fvx reads fk-witness, "
+                          "fk-seeded-ik and exhaustive-ik maps");
+  if (version == 1 && h.method == "fk-witness") throw FileError(path, "an fk-witness map must be format version 2");
   r.at += header_size;
   CapabilityMap map(h);
   const auto count = r.get<std::uint64_t>();

@@ -48,7 +48,8 @@ Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vect
     a.q = q;
     a.position_error_m = e_p.norm();
     a.angle_error_rad = e_r.norm();
-    if (a.position_error_m <= c.position_tolerance_m && a.angle_error_rad <= c.angle_tolerance_rad) {
+    if ((a.position_error_m <= c.position_tolerance_m && a.angle_error_rad <= c.angle_tolerance_rad) ||
+        (c.accept && c.accept(T.translation(), d))) {
       a.reached = true;
       return a;
     }
@@ -108,6 +109,40 @@ IkResult solve_viewing_ik(const Arm& arm, const Eigen::Vector3d& position_base, 
   result.position_error_m = best.position_error_m;
   result.angle_error_rad = best.angle_error_rad;
   return result;
+}
+
+bool in_bit(const CapabilityMap& map, std::int64_t voxel, int direction, const Eigen::Vector3d& p_base,
+            const Eigen::Vector3d& d_base) {
+  return voxel >= 0 && map.voxel_of(p_base) == voxel && map.directions().nearest(d_base.normalized()) == direction;
+}
+
+IkResult solve_in_region(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int direction,
+                         const Eigen::Vector3d& aim_base, const IkConfig& config, std::mt19937_64& rng) {
+  IkConfig in_region = config;  // any pose the descent passes inside the bit is reached
+  in_region.accept = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& d) { return in_bit(map, voxel, direction, p, d); };
+  const Eigen::Vector3d& d = map.directions()[direction];
+  IkResult r = solve_viewing_ik(arm, aim_base, d, in_region, rng);
+  // A bit may hold poses only in a corner of its voxel: aim at each octant's centre as well.
+  const double quarter = 0.25 * map.header().voxel_m;
+  for (int octant = 0; octant < 8 && !r.reached; ++octant) {
+    const Eigen::Vector3d offset((octant & 1 ? 1 : -1) * quarter, (octant & 2 ? 1 : -1) * quarter,
+                                 (octant & 4 ? 1 : -1) * quarter);
+    const int iterations = r.iterations;
+    r = solve_viewing_ik(arm, map.center_of(voxel) + offset, d, in_region, rng);
+    r.iterations += iterations;
+  }
+  return r;
+}
+
+IkResult solve_in_bit(const CapabilityMap& map, const Arm& arm, const Eigen::Vector3d& position_base,
+                      const Eigen::Vector3d& direction_base, const IkConfig& config, std::mt19937_64& rng) {
+  IkResult r = solve_viewing_ik(arm, position_base, direction_base, config, rng);
+  if (r.reached || map.header().method != "fk-witness") return r;
+  const std::int64_t voxel = map.voxel_of(position_base);
+  const int direction = map.directions().nearest(direction_base);
+  r = solve_in_region(map, arm, voxel, direction, position_base, config, rng);
+  r.snapped = r.reached;
+  return r;
 }
 
 }  // namespace fvx::capmap

@@ -42,11 +42,13 @@ const CommandSpec kCapmapSpec = {
         {"angle-tolerance", 0, "DEG", "build: IK angle tolerance, degrees (default: half the mean "
                                       "direction spacing)", "/results/header/angle_tolerance_deg", "", above(0, 90)},
         seed_option("/config/seed", "build, eval: random seed", kBuild.seed),
-        {"fk-samples", 0, "N", "build: configurations of the forward pre-pass", "/config/fk_samples",
-         dflt(kBuild.fk_samples), in(1, 1e9)},
+        {"method", 0, "NAME", "build: fk-seeded-ik (default) or exhaustive-ik (IK at the voxel centre), or fk-witness "
+         "(some pose in the voxel, axis in the direction's cell, from FK samples)", "/results/header/method"},
+        {"target-recall", 0, "R", "build, fk-witness: sample until a round's estimate of the recall reaches R", "/config/target_recall", dflt(kBuild.target_recall), above(0, 1)},
+        {"fk-samples", 0, "N", "build: at most N configurations (fk-witness, default 2^27), or the forward pre-pass (fk-seeded-ik, default 400000)", "/config/fk_samples", "", in(1, 1e9)},
         {"restarts", 0, "N", "build: IK restarts per bit after the seed", "/config/ik_restarts",
          dflt(kBuild.ik_restarts), in(0, 1000)},
-        {"exhaustive", 0, nullptr, "build: IK for every voxel and direction (a slow baseline)", "/config/exhaustive"},
+        {"exhaustive", 0, nullptr, "build: the same as --method exhaustive-ik (a slow baseline)", "/results/header/method"},
         threads_option("/config/threads", "build: threads"),
         {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later",
          "/results/header/shard_index"},
@@ -98,9 +100,12 @@ int build(const Args& args, Json& report) {
   c.angle_tolerance_rad = args.number("angle-tolerance", 0.0) * M_PI / 180.0;
   args.read("seed", c.seed);
   args.read("fk-samples", c.fk_samples);
+  args.read("target-recall", c.target_recall);
   args.read("restarts", c.ik_restarts);
   args.read("threads", c.threads);
-  c.exhaustive = args.has("exhaustive");
+  if (args.has("method")) c.method = capmap::parse_build_method(args.get("method"), "--method");
+  if (args.has("exhaustive") && args.has("method")) throw UsageError("fvx capmap build: give --exhaustive or --method");
+  if (args.has("exhaustive")) c.method = capmap::BuildMethod::ExhaustiveIk;
   if (args.has("shard")) {
     const std::string s = args.get("shard");
     const auto slash = s.find('/');
@@ -122,7 +127,7 @@ int build(const Args& args, Json& report) {
         if (percent < last_percent + 5 && done < total) return;  // a line per 5 %
         last_percent = percent;
         progress.update("fvx capmap build: " + std::to_string(percent) + " % (" + std::to_string(done) + "/" +
-                        std::to_string(total) + " bits checked)");
+                        std::to_string(total) + ")");
       },
       &g_interrupted);
   progress.finish();
@@ -130,8 +135,8 @@ int build(const Args& args, Json& report) {
   std::signal(SIGTERM, SIG_DFL);
   if (g_interrupted) throw Error("fvx capmap build: interrupted; " + output + " was not written");
   map.save(output);
-  report["config"] = {{"seed", c.seed}, {"fk_samples", c.fk_samples}, {"ik_restarts", c.ik_restarts},
-                      {"threads", c.threads}, {"exhaustive", c.exhaustive}};
+  report["config"] = {{"seed", c.seed}, {"method", capmap::to_string(c.method)}, {"fk_samples", c.fk_samples},
+                      {"target_recall", c.target_recall}, {"ik_restarts", c.ik_restarts}, {"threads", c.threads}};
   report["inputs"] = {{"urdf", args.positional[1]}, {"joints", arm.joint_names()}};
   report["results"] = {{"output", output},
                        {"header", capmap_header_json(map.header())},
@@ -139,6 +144,8 @@ int build(const Args& args, Json& report) {
                        {"bits", stats.reached},
                        {"candidates_checked", stats.candidates},
                        {"ik_iterations", stats.ik_iterations},
+                       {"fk_samples", stats.fk_samples},
+                       {"estimated_recall", stats.estimated_recall},
                        {"seconds", clock.seconds()}};
   return 0;
 }
@@ -178,10 +185,7 @@ int eval(const Args& args, Json& report) {
   const capmap::Evaluation e = capmap::evaluate(map, arm, samples, seed);
   report["config"] = {{"seed", seed}, {"samples", samples}};
   report["inputs"] = {{"map", args.positional[1]}, {"urdf", args.positional[2]}};
-  report["results"] = {{"precision", e.precision()},
-                       {"precision_queries", e.precision_queries},
-                       {"recall", e.recall()},
-                       {"recall_queries", e.recall_queries}};
+  report["results"] = capmap_evaluation_json(e, h.method);
   report["warnings"] = warnings;
   return 0;
 }

@@ -52,6 +52,18 @@ std::vector<Eigen::Vector3d> unknown_sides(const map::OccupancyMap& map, const f
   return sides;
 }
 
+/// The view moved to the pose IK reached: its position and viewing axis, the roll kept (the
+/// axis turned by the smallest rotation).
+Eigen::Isometry3d snapped_pose(const Eigen::Isometry3d& asked, const Eigen::Vector3d& p_world,
+                               const Eigen::Vector3d& axis_world) {
+  Eigen::Isometry3d T = asked;
+  T.translation() = p_world;
+  T.linear() = (Eigen::Quaterniond::FromTwoVectors(asked.linear().col(2), axis_world) * Eigen::Quaterniond(asked.linear()))
+                   .normalized()
+                   .toRotationMatrix();
+  return T;
+}
+
 }  // namespace
 
 Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& analysis,
@@ -200,13 +212,20 @@ bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& prun
   if (reach->arm) {
     std::mt19937_64 rng(pose_seed);
     const Eigen::Isometry3d T_base_world = reach->T_world_base.inverse();
-    const capmap::IkResult ik =
-        capmap::solve_viewing_ik(*reach->arm, T_base_world * p, T_base_world.linear() * d, reach->ik, rng);
+    const capmap::IkResult ik = capmap::solve_in_bit(*reach->capmap, *reach->arm, T_base_world * p,
+                                                     T_base_world.linear() * d, reach->ik, rng);
     if (!ik.reached) {
       ++pruning.ik_failed;
       return false;
     }
     pose.joints_rad = ik.q;
+    if (ik.snapped) {  // the map's bit holds a pose near this one: the view moves there
+      const Eigen::Vector3d p_snapped = reach->T_world_base * reach->arm->fk(ik.q).translation();
+      const std::optional<map::VoxelKey> cell = grid.cell_of(p_snapped);
+      if (!cell || !keep_position(*cell, p_snapped, pruning)) return false;
+      pose.T_world_sensor = snapped_pose(pose.T_world_sensor, p_snapped,
+                                         reach->T_world_base.linear() * reach->arm->viewing_direction(ik.q));
+    }
   }
   return true;
 }

@@ -67,4 +67,23 @@ std::size_t write_capmap_cloud(const std::string& path, const capmap::Capability
   return points.size();
 }
 
+Json capmap_evaluation_json(const capmap::Evaluation& e, const std::string& method) {
+  Json bands = Json::array();
+  for (const auto& band : e.recall_by_height)
+    if (band.recall.queries)
+      bands.push_back({{"z_min_m", band.z_min_m},
+                       {"z_max_m", band.z_max_m},
+                       {"queries", band.recall.queries},
+                       {"recall", band.recall.value()},
+                       {"recall_interval_95", {band.recall.low(), band.recall.high()}}});
+  return {{"bit_definition", method},
+          {"precision", e.precision.value()},
+          {"precision_interval_95", {e.precision.low(), e.precision.high()}},
+          {"precision_queries", e.precision.queries},
+          {"recall", e.recall.value()},
+          {"recall_interval_95", {e.recall.low(), e.recall.high()}},
+          {"recall_queries", e.recall.queries},
+          {"recall_by_height", bands}};
+}
+
 }  // namespace fvx::report

@@ -68,8 +68,8 @@ std::pair<Eigen::Isometry3d, Eigen::VectorXd> start_configuration(const std::opt
   if (!reach->arm) return {T_world_sensor, Eigen::VectorXd()};
   std::mt19937_64 rng(seed);
   const Eigen::Isometry3d T_base_world = reach->T_world_base.inverse();
-  const capmap::IkResult ik =
-      capmap::solve_viewing_ik(*reach->arm, T_base_world * p, T_base_world.linear() * d, reach->ik, rng);
+  const capmap::IkResult ik = capmap::solve_in_bit(*reach->capmap, *reach->arm, T_base_world * p,
+                                                   T_base_world.linear() * d, reach->ik, rng);
   if (!ik.reached) throw Error("the start pose is out of the arm's reach: IK finds no configuration there");
   return {reach->T_world_base * reach->arm->fk(ik.q), ik.q};
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fvx/capmap/capability_map.hpp"
+#include "fvx/capmap/evaluate.hpp"
 #include "fvx/core/json.hpp"
 
 namespace fvx::report {
@@ -13,6 +14,9 @@ namespace fvx::report {
 Json capmap_header_json(const capmap::CapabilityHeader& h);
 /// Header, voxels, bits set, and a histogram of the reachability index in 10 % bins.
 Json capmap_info_json(const capmap::CapabilityMap& map);
+/// fvx capmap eval's results: the bit definition, precision and recall with their 95 %
+/// intervals, and recall per height band (the bands FK poses fell in).
+Json capmap_evaluation_json(const capmap::Evaluation& e, const std::string& method);
 /// At `point_m`: inside the grid, the reachability index, the directions reached, and with
 /// `direction` (unit) whether it is reached.
 Json capmap_query_json(const capmap::CapabilityMap& map, const Eigen::Vector3d& point_m,

@@ -158,17 +158,75 @@ TEST(EvaluateCapabilityMap, ABuiltMapIsPreciseAndAnEmptyOneFindsNothing) {
   const BuildConfig config = coarse_fvx_arm_build();
   const CapabilityMap map = build_capability_map(arm, config);
   const Evaluation e = evaluate(map, arm, 300, 7);
-  EXPECT_EQ(e.precision_queries, 300);
-  EXPECT_EQ(e.recall_queries, 300);
-  EXPECT_GE(e.precision(), 0.9);
-  EXPECT_GE(e.recall(), 0.3);
+  EXPECT_EQ(e.precision.queries, 300);
+  EXPECT_EQ(e.recall.queries, 300);
+  EXPECT_GE(e.precision.value(), 0.9);
+  EXPECT_GE(e.recall.value(), 0.3);
   const Evaluation again = evaluate(map, arm, 300, 7);
-  EXPECT_EQ(again.confirmed, e.confirmed);
-  EXPECT_EQ(again.found, e.found);
+  EXPECT_EQ(again.precision.hits, e.precision.hits);
+  EXPECT_EQ(again.recall.hits, e.recall.hits);
   const Evaluation empty = evaluate(CapabilityMap(map.header()), arm, 300, 7);
-  EXPECT_EQ(empty.precision_queries, 0);
-  EXPECT_EQ(empty.found, 0);
-  EXPECT_EQ(empty.recall(), 0.0);
+  EXPECT_EQ(empty.precision.queries, 0);
+  EXPECT_EQ(empty.recall.hits, 0);
+  EXPECT_EQ(empty.recall.value(), 0.0);
+}
+
+// fk-witness: every bit has a configuration behind it, so on the planar arm no bit lies
+// farther from the closed-form reachable set than its voxel's half diagonal (the witness is
+// somewhere in the voxel) with a direction in its cell; the same bytes on any thread count,
+// and shards merge into the single build.
+TEST(BuildCapabilityMap, WitnessBitsLieOnThePlanarArmsReachableSetAndAreDeterministic) {
+  const test::TempDir dir;
+  const Arm arm = planar_arm();
+  BuildConfig config;
+  config.method = BuildMethod::FkWitness;
+  config.voxel_m = 0.05;
+  config.directions = 60;
+  config.threads = 1;
+  BuildStats stats;
+  const CapabilityMap map = build_capability_map(arm, config, &stats);
+  ASSERT_GT(stats.reached, 100u);
+  EXPECT_GE(stats.estimated_recall, config.target_recall);
+  EXPECT_EQ(stats.fk_samples % kWitnessRound, 0u);
+  const double cell_rad = 1.5 * map.directions().mean_spacing_rad();  // beyond any direction cell's radius
+  std::size_t far = 0;
+  for (const auto& [voxel, bits] : map.voxels())
+    for (int d = 0; d < map.directions().size(); ++d)
+      if (map.reachable(voxel, d) &&
+          closed_form_distance(map.center_of(voxel), map.directions()[d], cell_rad) > std::sqrt(3.0) * config.voxel_m / 2)
+        ++far;
+  EXPECT_EQ(far, 0u);
+  map.save(dir / "one.fcm");
+  config.threads = 3;
+  build_capability_map(arm, config).save(dir / "three.fcm");
+  EXPECT_TRUE(bytes_of(dir / "one.fcm") == bytes_of(dir / "three.fcm")) << "1 and 3 threads differ";
+  std::vector<CapabilityMap> shards;
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    config.shard_index = i;
+    config.shard_count = 3;
+    shards.push_back(build_capability_map(arm, config));
+  }
+  CapabilityMap::merge(shards).save(dir / "merged.fcm");
+  EXPECT_TRUE(bytes_of(dir / "merged.fcm") == bytes_of(dir / "one.fcm")) << "merged shards differ";
+}
+
+// fvx capmap eval on an fk-witness map of the fvx arm: IK finds a pose inside nearly every bit
+// drawn, and recall meets the build's own estimate (both with their 95 % intervals).
+TEST(EvaluateCapabilityMap, WitnessMapsOfTheFvxArmAreConfirmedAndFindFkPoses) {
+  const Arm arm = fvx_arm();
+  BuildConfig config = coarse_fvx_arm_build();
+  config.method = BuildMethod::FkWitness;
+  config.fk_samples = 0;  // until the target recall
+  BuildStats stats;
+  const CapabilityMap map = build_capability_map(arm, config, &stats);
+  EXPECT_EQ(map.header().method, "fk-witness");
+  const Evaluation e = evaluate(map, arm, 400, 3);
+  std::printf("fvx arm, fk-witness at 15 cm: precision %.3f [%.3f, %.3f], recall %.3f [%.3f, %.3f], %zu samples\n",
+              e.precision.value(), e.precision.low(), e.precision.high(), e.recall.value(), e.recall.low(),
+              e.recall.high(), stats.fk_samples);
+  EXPECT_GE(e.precision.high(), 0.98);
+  EXPECT_GE(e.recall.high(), 0.99);
+  EXPECT_LE(e.recall.low(), e.recall.value());
 }
 
 }  // namespace

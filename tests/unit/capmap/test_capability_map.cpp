@@ -2,6 +2,8 @@
 // corruption) and the merge of shards.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <fstream>
 
 #include "fvx/capmap/capability_map.hpp"
@@ -33,7 +35,7 @@ CapabilityHeader small_header() {
   h.voxel_m = 0.1;
   h.origin_m = Eigen::Vector3d(-1, -1, 0);
   h.dims = {20, 20, 15};
-  h.method = "test";
+  h.method = "fk-seeded-ik";
   h.fvx_version = "test";
   return h;
 }
@@ -162,7 +164,7 @@ TEST(CapabilityMap, BitsBeyondTheLastDirectionAreRefused) {
   std::string bytes = bytes_of(dir / "good.fcm");
   std::string body = bytes.substr(0, bytes.size() - 8);
   body[body.size() - 1] = char(body[body.size() - 1] | 0x80);  // bit 63 of the last word (200 directions)
-  std::uint64_t hash = 1469598103934665603ull;  // the file's checksum (FNV-1a 64 with this offset basis)
+  std::uint64_t hash = 14695981039346656037ull;  // the file's checksum (FNV-1a 64, format version 2)
   for (const char c : body) hash = (hash ^ std::uint8_t(c)) * 1099511628211ull;
   for (int i = 0; i < 8; ++i) body.push_back(char(hash >> (8 * i) & 0xff));
   std::ofstream(dir / "bits.fcm", std::ios::binary) << body;
@@ -171,6 +173,34 @@ TEST(CapabilityMap, BitsBeyondTheLastDirectionAreRefused) {
     ADD_FAILURE() << "accepted";
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find("beyond its 200 directions"), std::string::npos) << e.what();
+  }
+}
+
+/// `body` (a file without its checksum) with its version set and FNV-1a 64 from `basis` appended.
+std::string with_version(std::string body, std::uint32_t version, std::uint64_t basis) {
+  std::memcpy(body.data() + 8, &version, sizeof version);
+  std::uint64_t hash = basis;
+  for (const char c : body) hash = (hash ^ std::uint8_t(c)) * 1099511628211ull;
+  for (int i = 0; i < 8; ++i) body.push_back(char(hash >> (8 * i) & 0xff));
+  return body;
+}
+
+// Format version 2 (this fvx's) checksums with FNV-1a's own offset basis; version 1 files
+// (the old basis, centre bits) still load with the same bits; other versions are refused.
+TEST(CapabilityMap, VersionOneFilesStillLoadAndUnknownVersionsAreRefused) {
+  const test::TempDir dir;
+  small_map().save(dir / "v2.fcm");
+  const std::string bytes = bytes_of(dir / "v2.fcm");
+  const std::string body = bytes.substr(0, bytes.size() - 8);
+  std::ofstream(dir / "v1.fcm", std::ios::binary) << with_version(body, 1, 1469598103934665603ull);
+  std::ofstream(dir / "v3.fcm", std::ios::binary) << with_version(body, 3, 14695981039346656037ull);
+  const CapabilityMap v1 = CapabilityMap::load(dir / "v1.fcm");
+  EXPECT_EQ(v1.voxels(), small_map().voxels());
+  try {
+    CapabilityMap::load(dir / "v3.fcm");
+    ADD_FAILURE() << "version 3 accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("version 3"), std::string::npos) << e.what();
   }
 }
 
