@@ -249,7 +249,8 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   if (version != 1 && version != kVersion)
     throw FileError(path, "capability map format version " + std::to_string(version) + "; this fvx reads versions 1 to " +
                               std::to_string(kVersion));
-  if (fnv1a(body, version == 1 ? kFnvBasisVersion1 : kFnvBasis) != stored) throw FileError(path, "checksum mismatch: the capability map is corrupt or truncated");
+  if (fnv1a(body, version == 1 ? kFnvBasisVersion1 : kFnvBasis) != stored)
+    throw FileError(path, "checksum mismatch: the capability map is corrupt or truncated");
   const auto header_size = r.get<std::uint32_t>();
   if (r.at + header_size > body.size()) throw FileError(path, "truncated capability map");
   CapabilityHeader h;

@@ -123,11 +123,13 @@ int build(const Args& args, Json& report) {
   const capmap::CapabilityMap map = capmap::build_capability_map(
       arm, c, &stats,
       [&, last_percent = -1](std::size_t done, std::size_t total) mutable {
+        const bool rounds = c.method == capmap::BuildMethod::FkWitness;  // until the target recall: no fixed total
         const int percent = total ? int(100 * done / total) : 100;
-        if (percent < last_percent + 5 && done < total) return;  // a line per 5 %
+        if (!rounds && percent < last_percent + 5 && done < total) return;  // a line per 5 %
         last_percent = percent;
-        progress.update("fvx capmap build: " + std::to_string(percent) + " % (" + std::to_string(done) + "/" +
-                        std::to_string(total) + ")");
+        progress.update("fvx capmap build: " + (rounds ? std::to_string(done) + " configurations drawn"
+                                                        : std::to_string(percent) + " % (" + std::to_string(done) +
+                                                              "/" + std::to_string(total) + " bits checked)"));
       },
       &g_interrupted);
   progress.finish();
@@ -142,10 +144,8 @@ int build(const Args& args, Json& report) {
                        {"header", capmap_header_json(map.header())},
                        {"voxels", map.voxel_count()},
                        {"bits", stats.reached},
-                       {"candidates_checked", stats.candidates},
-                       {"ik_iterations", stats.ik_iterations},
-                       {"fk_samples", stats.fk_samples},
-                       {"estimated_recall", stats.estimated_recall},
+                       {"candidates_checked", stats.candidates}, {"ik_iterations", stats.ik_iterations},
+                       {"fk_samples", stats.fk_samples}, {"estimated_recall", stats.estimated_recall},
                        {"seconds", clock.seconds()}};
   return 0;
 }

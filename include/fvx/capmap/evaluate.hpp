@@ -2,9 +2,9 @@
 /// \file
 /// How well a capability map matches its arm, by sampling (fvx capmap eval):
 /// - precision: set bits drawn at random that IK confirms. An fk-witness bit (some pose in
-///   the voxel, viewing axis in the direction's cell) is confirmed when IK towards the voxel
-///   centre and the direction, from restarts, ends at a pose inside the voxel whose axis lies
-///   in the direction's cell. A centre bit (fk-seeded-ik, exhaustive-ik) is confirmed when IK
+///   the voxel, viewing axis in the direction's cell) is confirmed when solve_in_region (IK
+///   aimed at the voxel centre, then at each octant's centre, with restarts) passes a pose
+///   inside the bit. A centre bit (fk-seeded-ik, exhaustive-ik) is confirmed when IK
 ///   reaches a point drawn in the voxel with the map's tolerances widened by its quantisation
 ///   (half the voxel diagonal, half the mean direction spacing).
 /// - recall: poses the arm reaches by construction (forward kinematics of configurations

@@ -65,8 +65,8 @@ IkResult solve_in_region(const CapabilityMap& map, const Arm& arm, std::int64_t 
 
 /// IK for a viewing pose that `map` calls reachable. A centre bit (IK methods) promises the
 /// pose within the IK tolerances; an fk-witness bit only some pose in its voxel and direction
-/// cell, so when the pose asked is not reached, the best configuration found is accepted if
-/// its pose lies in the same bit (IkResult::snapped).
+/// cell, so when the pose asked is not reached, solve_in_region looks for one in the same bit
+/// (IkResult::snapped). On a witness map a miss thus costs up to nine more IK solves.
 IkResult solve_in_bit(const CapabilityMap& map, const Arm& arm, const Eigen::Vector3d& position_base,
                       const Eigen::Vector3d& direction_base, const IkConfig& config, std::mt19937_64& rng);
 

@@ -82,13 +82,9 @@ std::string bytes_of(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
-TEST(BuildCapabilityMap, SameSeedSameBytesOnAnyThreadCountAndShardsMergeToIt) {
-  const test::TempDir dir;
-  const Arm arm = planar_arm();
-  BuildConfig config;
-  config.voxel_m = 0.05;
-  config.directions = 60;
-  config.fk_samples = 20000;
+/// Builds `config` (threads = 1) into dir/one.fcm, then checks that 3 threads write the same
+/// bytes and that its 3 shards merge into them.
+void expect_thread_and_shard_independent(const Arm& arm, BuildConfig config, const test::TempDir& dir) {
   config.threads = 1;
   build_capability_map(arm, config).save(dir / "one.fcm");
   config.threads = 3;
@@ -102,9 +98,18 @@ TEST(BuildCapabilityMap, SameSeedSameBytesOnAnyThreadCountAndShardsMergeToIt) {
   }
   CapabilityMap::merge(shards).save(dir / "merged.fcm");
   EXPECT_TRUE(bytes_of(dir / "merged.fcm") == bytes_of(dir / "one.fcm")) << "merged shards differ";
+}
+
+TEST(BuildCapabilityMap, SameSeedSameBytesOnAnyThreadCountAndShardsMergeToIt) {
+  const test::TempDir dir;
+  const Arm arm = planar_arm();
+  BuildConfig config;
+  config.voxel_m = 0.05;
+  config.directions = 60;
+  config.fk_samples = 20000;
+  config.threads = 1;
+  expect_thread_and_shard_independent(arm, config, dir);
   config.seed = 2;
-  config.shard_count = 1;
-  config.shard_index = 0;
   build_capability_map(arm, config).save(dir / "seed2.fcm");
   EXPECT_TRUE(bytes_of(dir / "seed2.fcm") != bytes_of(dir / "one.fcm")) << "the seed changes nothing";
 }
@@ -196,18 +201,7 @@ TEST(BuildCapabilityMap, WitnessBitsLieOnThePlanarArmsReachableSetAndAreDetermin
           closed_form_distance(map.center_of(voxel), map.directions()[d], cell_rad) > std::sqrt(3.0) * config.voxel_m / 2)
         ++far;
   EXPECT_EQ(far, 0u);
-  map.save(dir / "one.fcm");
-  config.threads = 3;
-  build_capability_map(arm, config).save(dir / "three.fcm");
-  EXPECT_TRUE(bytes_of(dir / "one.fcm") == bytes_of(dir / "three.fcm")) << "1 and 3 threads differ";
-  std::vector<CapabilityMap> shards;
-  for (std::uint32_t i = 0; i < 3; ++i) {
-    config.shard_index = i;
-    config.shard_count = 3;
-    shards.push_back(build_capability_map(arm, config));
-  }
-  CapabilityMap::merge(shards).save(dir / "merged.fcm");
-  EXPECT_TRUE(bytes_of(dir / "merged.fcm") == bytes_of(dir / "one.fcm")) << "merged shards differ";
+  expect_thread_and_shard_independent(arm, config, dir);
 }
 
 // fvx capmap eval on an fk-witness map of the fvx arm: IK finds a pose inside nearly every bit
