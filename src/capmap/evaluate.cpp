@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,10 @@ namespace fvx::capmap {
 namespace {
 
 constexpr double kZ95 = 1.959963984540054;  // the normal quantile of a two-sided 95 % interval
+/// Configurations drawn to find IK starts near the queried witness bits (starts_in_voxels):
+/// 2^20, about a second of forward kinematics for a 5-joint arm; and the starts kept per bit.
+constexpr int kStartPool = 1 << 20;
+constexpr std::size_t kStartsPerBit = 4;
 
 /// Wilson's score interval for k of n: centre ± half-width, both in [0, 1].
 std::pair<double, double> wilson(int k, int n) {
@@ -23,14 +28,50 @@ std::pair<double, double> wilson(int k, int n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-/// IK from restarts towards the voxel centre and the bit's direction; confirmed when the best
-/// configuration's pose lies in the bit (an fk-witness bit promises some pose there).
-bool confirm_witness_bit(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int d, std::mt19937_64& rng) {
-  IkConfig ik;
-  ik.position_tolerance_m = 0.25 * map.header().voxel_m;
-  ik.angle_tolerance_rad = 0.25 * map.directions().mean_spacing_rad();
-  const IkResult r = solve_in_region(map, arm, voxel, d, map.center_of(voxel), ik, rng);
-  return r.reached && in_bit(map, voxel, d, arm.fk(r.q).translation(), arm.viewing_direction(r.q));
+/// Configurations to start the IK of each queried witness bit from: of `pool` configurations
+/// drawn uniformly within the joint limits (a generator of its own, independent of the
+/// build's), the kStartsPerBit whose poses lie in the bit's voxel with their axes nearest the
+/// bit's direction, nearest first (fewer when fewer lie in the voxel). Bits at the edge of
+/// what the arm reaches (near singular or limit configurations) are small targets for
+/// descents from random starts; a pose already in the voxel is a start close to them.
+std::vector<std::vector<Eigen::VectorXd>> starts_in_voxels(const CapabilityMap& map, const Arm& arm,
+                                                           const std::vector<std::pair<std::int64_t, int>>& queries,
+                                                           std::uint64_t seed) {
+  std::unordered_multimap<std::int64_t, std::size_t> by_voxel;
+  for (std::size_t i = 0; i < queries.size(); ++i) by_voxel.emplace(queries[i].first, i);
+  std::vector<std::vector<std::pair<double, Eigen::VectorXd>>> best(queries.size());
+  std::mt19937_64 rng(seed ^ 0x5EEDF00DCAFEull);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd q(arm.dof());
+  for (int s = 0; s < kStartPool; ++s) {
+    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
+    const auto [first, last] = by_voxel.equal_range(map.voxel_of(arm.fk(q).translation()));
+    if (first == last) continue;
+    const Eigen::Vector3d d = arm.viewing_direction(q);
+    for (auto it = first; it != last; ++it) {
+      auto& kept = best[it->second];
+      const double dot = d.dot(map.directions()[queries[it->second].second]);
+      if (kept.size() == kStartsPerBit && dot <= kept.back().first) continue;
+      if (kept.size() == kStartsPerBit) kept.pop_back();
+      kept.insert(std::find_if(kept.begin(), kept.end(), [&](const auto& k) { return k.first < dot; }), {dot, q});
+    }
+  }
+  std::vector<std::vector<Eigen::VectorXd>> starts(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    for (const auto& [dot, start] : best[i]) starts[i].push_back(start);
+  return starts;
+}
+
+/// IK into the bit (solve_in_region) from each of `starts`, then from random restarts;
+/// confirmed when a configuration found lies in it (an fk-witness bit promises some pose
+/// there).
+bool confirm_witness_bit(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int d,
+                         const std::vector<Eigen::VectorXd>& starts, std::mt19937_64& rng) {
+  IkConfig from_start;
+  from_start.restarts = 0;
+  for (const Eigen::VectorXd& start : starts)
+    if (solve_in_region(map, arm, voxel, d, from_start, rng, &start).reached) return true;
+  return solve_in_region(map, arm, voxel, d, IkConfig{}, rng).reached;
 }
 
 bool confirm_centre_bit(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int d, std::mt19937_64& rng) {
@@ -56,10 +97,15 @@ Evaluation evaluate(const CapabilityMap& map, const Arm& arm, int samples, std::
   for (const auto& [voxel, words] : map.voxels())
     for (int d = 0; d < h.directions; ++d)
       if (words[std::size_t(d / 64)] >> (d % 64) & 1u) bits.emplace_back(voxel, d);
+  std::vector<std::pair<std::int64_t, int>> queries;
+  for (int i = 0; i < samples && !bits.empty(); ++i) queries.push_back(bits[std::size_t(rng() % bits.size())]);
   const bool witness = h.method == "fk-witness";
-  for (int i = 0; i < samples && !bits.empty(); ++i, ++e.precision.queries) {
-    const auto& [voxel, d] = bits[std::size_t(rng() % bits.size())];
-    e.precision.hits += witness ? confirm_witness_bit(map, arm, voxel, d, rng) : confirm_centre_bit(map, arm, voxel, d, rng);
+  const std::vector<std::vector<Eigen::VectorXd>> starts =
+      witness ? starts_in_voxels(map, arm, queries, seed) : std::vector<std::vector<Eigen::VectorXd>>(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i, ++e.precision.queries) {
+    const auto& [voxel, d] = queries[i];
+    e.precision.hits += witness ? confirm_witness_bit(map, arm, voxel, d, starts[i], rng)
+                                : confirm_centre_bit(map, arm, voxel, d, rng);
   }
   e.recall_by_height.resize(h.dims[2]);
   for (std::size_t z = 0; z < e.recall_by_height.size(); ++z) {

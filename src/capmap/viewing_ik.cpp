@@ -1,6 +1,7 @@
 #include "fvx/capmap/viewing_ik.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "fvx/core/error.hpp"
@@ -35,6 +36,30 @@ Eigen::Vector3d rotation_between(const Eigen::Vector3d& d, const Eigen::Vector3d
   return std::atan2(s, c) * axis / s;
 }
 
+/// The damped least-squares step J^T (J J^T + λ² I)^-1 e.
+Eigen::VectorXd damped_step(const Eigen::MatrixXd& J, const Eigen::Matrix<double, 6, 1>& e, double damping) {
+  const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose() + damping * damping * Eigen::Matrix<double, 6, 6>::Identity();
+  return J.transpose() * JJt.ldlt().solve(e);
+}
+
+/// The step again without the joints that sit at a limit and that `dq` pushes past it: the
+/// clamp would drop their part of the step, and what the other joints do was chosen
+/// assuming it. Region bits that an arm reaches only at a joint limit (the youBot's
+/// witnesses often are) were missed without this.
+Eigen::VectorXd step_within_limits(const Arm& arm, const Eigen::VectorXd& q, Eigen::MatrixXd J,
+                                   const Eigen::Matrix<double, 6, 1>& e, double damping, Eigen::VectorXd dq) {
+  for (int round = 0; round < arm.dof(); ++round) {
+    bool blocked = false;
+    for (int j = 0; j < arm.dof(); ++j) {
+      const bool at_lower = q[j] <= arm.lower_rad()[j] && dq[j] < 0, at_upper = q[j] >= arm.upper_rad()[j] && dq[j] > 0;
+      if ((at_lower || at_upper) && J.col(j).squaredNorm() > 0) J.col(j).setZero(), blocked = true;
+    }
+    if (!blocked) return dq;
+    dq = damped_step(J, e, damping);
+  }
+  return dq;
+}
+
 Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vector3d& d_goal, const IkConfig& c,
                 Eigen::VectorXd q) {
   Attempt a;
@@ -43,13 +68,13 @@ Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vect
   for (a.iterations = 0; a.iterations <= c.max_iterations; ++a.iterations) {
     const Eigen::Isometry3d T = arm.fk(q);
     const Eigen::Vector3d d = T.linear() * arm.config().viewing_axis_sensor;
-    const Eigen::Vector3d e_p = p_goal - T.translation();
-    const Eigen::Vector3d e_r = rotation_between(d, d_goal);
+    Eigen::Vector3d e_p = p_goal - T.translation(), e_r = rotation_between(d, d_goal);
+    const bool inside = c.region && c.region(T.translation(), d, e_p, e_r);
     a.q = q;
     a.position_error_m = e_p.norm();
     a.angle_error_rad = e_r.norm();
-    if ((a.position_error_m <= c.position_tolerance_m && a.angle_error_rad <= c.angle_tolerance_rad) ||
-        (c.accept && c.accept(T.translation(), d))) {
+    if (inside || (!c.region && a.position_error_m <= c.position_tolerance_m &&
+                   a.angle_error_rad <= c.angle_tolerance_rad)) {
       a.reached = true;
       return a;
     }
@@ -64,14 +89,14 @@ Attempt descend(const Arm& arm, const Eigen::Vector3d& p_goal, const Eigen::Vect
     // Direction error inside half the angle tolerance does not pull: where the task has more
     // constraints than the arm has joints, least squares would otherwise trade position for
     // direction and settle outside the position tolerance (a planar arm lost a third of its
-    // reachable bits to that).
-    const double dead_band = 0.5 * c.angle_tolerance_rad, angle = e_r.norm();
+    // reachable bits to that). A region's errors already stop at its edge.
+    const double dead_band = c.region ? 0.0 : 0.5 * c.angle_tolerance_rad, angle = e_r.norm();
     const Eigen::Vector3d e_r_pull = angle > dead_band ? Eigen::Vector3d(e_r * ((angle - dead_band) / angle))
                                                        : Eigen::Vector3d::Zero();
     Eigen::Matrix<double, 6, 1> e;
     e << e_p, c.direction_weight_m * e_r_pull;
-    const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose() + c.damping * c.damping * Eigen::Matrix<double, 6, 6>::Identity();
-    Eigen::VectorXd dq = J.transpose() * JJt.ldlt().solve(e);
+    Eigen::VectorXd dq = damped_step(J, e, c.damping);
+    if (c.region) dq = step_within_limits(arm, q, J, e, c.damping, dq);
     const double largest = dq.cwiseAbs().maxCoeff();
     if (largest > 0.5) dq *= 0.5 / largest;  // at most 0.5 rad (or m) per joint per step
     q = (q + dq).cwiseMax(arm.lower_rad()).cwiseMin(arm.upper_rad());
@@ -116,22 +141,49 @@ bool in_bit(const CapabilityMap& map, std::int64_t voxel, int direction, const E
   return voxel >= 0 && map.voxel_of(p_base) == voxel && map.directions().nearest(d_base.normalized()) == direction;
 }
 
-IkResult solve_in_region(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int direction,
-                         const Eigen::Vector3d& aim_base, const IkConfig& config, std::mt19937_64& rng) {
-  IkConfig in_region = config;  // any pose the descent passes inside the bit is reached
-  in_region.accept = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& d) { return in_bit(map, voxel, direction, p, d); };
-  const Eigen::Vector3d& d = map.directions()[direction];
-  IkResult r = solve_viewing_ik(arm, aim_base, d, in_region, rng);
-  // A bit may hold poses only in a corner of its voxel: aim at each octant's centre as well.
-  const double quarter = 0.25 * map.header().voxel_m;
-  for (int octant = 0; octant < 8 && !r.reached; ++octant) {
-    const Eigen::Vector3d offset((octant & 1 ? 1 : -1) * quarter, (octant & 2 ? 1 : -1) * quarter,
-                                 (octant & 4 ? 1 : -1) * quarter);
-    const int iterations = r.iterations;
-    r = solve_viewing_ik(arm, map.center_of(voxel) + offset, d, in_region, rng);
-    r.iterations += iterations;
+namespace {
+
+/// The rotation vector that turns unit `d` along the great circle towards direction i of
+/// `directions` until it lies `margin_rad` inside i's cell ({x : x·d_i ≥ x·d_j for all j}).
+/// On the path x(t) = d cos t + w sin t (w: the unit tangent towards d_i) the boundary with
+/// d_j, n·x = 0 with n = d_i − d_j, is crossed where tan t = −(n·d)/(n·w); the path enters the
+/// cell at the last crossing of a boundary that d violates.
+Eigen::Vector3d into_cell(const DirectionSet& directions, int i, const Eigen::Vector3d& d, double margin_rad) {
+  const Eigen::Vector3d& d_i = directions[i];
+  const Eigen::Vector3d axis = d.cross(d_i);
+  const double s = axis.norm(), theta = std::atan2(s, d.dot(d_i));
+  if (s < 1e-12) return theta < 1.0 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(M_PI * d.unitOrthogonal());
+  const Eigen::Vector3d w = (d_i - d.dot(d_i) * d) / s;
+  double enter_rad = 0.0;
+  for (int j = 0; j < directions.size(); ++j) {
+    const Eigen::Vector3d n = d_i - directions[j];
+    const double at_d = n.dot(d);
+    if (j != i && at_d < 0.0) enter_rad = std::max(enter_rad, std::atan2(-at_d, n.dot(w)));
   }
-  return r;
+  return std::min(theta, enter_rad + margin_rad) * axis / s;
+}
+
+}  // namespace
+
+std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&)>
+bit_region(const CapabilityMap& map, std::int64_t voxel, int direction) {
+  const Eigen::Vector3d centre = map.center_of(voxel);
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.49 * map.header().voxel_m);
+  const double margin_rad = 0.01 * map.directions().mean_spacing_rad();
+  return [&map, voxel, direction, centre, half, margin_rad](const Eigen::Vector3d& p, const Eigen::Vector3d& d,
+                                                             Eigen::Vector3d& e_p, Eigen::Vector3d& e_r) {
+    if (in_bit(map, voxel, direction, p, d)) return true;
+    e_p = centre + (p - centre).cwiseMax(-half).cwiseMin(half) - p;
+    e_r = into_cell(map.directions(), direction, d, margin_rad);
+    return false;
+  };
+}
+
+IkResult solve_in_region(const CapabilityMap& map, const Arm& arm, std::int64_t voxel, int direction,
+                         const IkConfig& config, std::mt19937_64& rng, const Eigen::VectorXd* start) {
+  IkConfig in_region = config;
+  in_region.region = bit_region(map, voxel, direction);
+  return solve_viewing_ik(arm, map.center_of(voxel), map.directions()[direction], in_region, rng, start);
 }
 
 IkResult solve_in_bit(const CapabilityMap& map, const Arm& arm, const Eigen::Vector3d& position_base,
@@ -140,8 +192,12 @@ IkResult solve_in_bit(const CapabilityMap& map, const Arm& arm, const Eigen::Vec
   if (r.reached || map.header().method != "fk-witness") return r;
   const std::int64_t voxel = map.voxel_of(position_base);
   const int direction = map.directions().nearest(direction_base);
-  r = solve_in_region(map, arm, voxel, direction, position_base, config, rng);
+  const int iterations = r.iterations, attempts = r.attempts;
+  const Eigen::VectorXd nearest_q = r.q;  // the pose asked lies in the bit: start where IK came closest
+  r = solve_in_region(map, arm, voxel, direction, config, rng, &nearest_q);
   r.snapped = r.reached;
+  r.iterations += iterations;
+  r.attempts += attempts;
   return r;
 }
 
