@@ -42,11 +42,11 @@ const CommandSpec kCapmapSpec = {
         {"angle-tolerance", 0, "DEG", "build: IK angle tolerance, degrees (default: half the mean "
                                       "direction spacing)", "/results/header/angle_tolerance_deg", "", above(0, 90)},
         seed_option("/config/seed", "build, eval: random seed", kBuild.seed),
-        {"method", 0, "NAME", "build: fk-seeded-ik (default) or exhaustive-ik (IK at the voxel centre), or fk-witness "
-         "(some pose in the voxel, axis in the direction's cell, from FK samples)", "/results/header/method"},
+        {"method", 0, "NAME", "build: fk-witness (default: some pose in the voxel, axis in the direction's cell, "
+         "from FK samples), or fk-seeded-ik or exhaustive-ik (IK at the voxel centre)", "/results/header/method"},
         {"target-recall", 0, "R", "build, fk-witness: sample until a round's estimate of the recall reaches R", "/config/target_recall", dflt(kBuild.target_recall), above(0, 1)},
         {"fk-samples", 0, "N", "build: at most N configurations (fk-witness, default 2^27), or the forward pre-pass (fk-seeded-ik, default 400000)", "/config/fk_samples", "", in(1, 1e9)},
-        {"restarts", 0, "N", "build: IK restarts per bit after the seed", "/config/ik_restarts",
+        {"restarts", 0, "N", "build, IK methods: IK restarts per bit after the seed", "/config/ik_restarts",
          dflt(kBuild.ik_restarts), in(0, 1000)},
         {"exhaustive", 0, nullptr, "build: the same as --method exhaustive-ik (a slow baseline)", "/results/header/method"},
         threads_option("/config/threads", "build: threads"),

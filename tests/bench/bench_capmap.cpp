@@ -1,5 +1,6 @@
-// Capability maps: building the youBot map (5 cm, 200 directions) with the FK-seeded
-// method, the exhaustive per-direction IK loop as the baseline on the same z-slab in the
+// Capability maps: building the youBot map (5 cm, 200 directions) with the FK-seeded IK
+// method (the earlier default) and with fk-witness (the default), fk-witness at 2.5 cm, the
+// exhaustive per-direction IK loop as the baseline of FK-seeded IK on the same z-slab in the
 // same run (the whole exhaustive map would take many minutes), lookups, file size.
 //
 //   bench_capmap YOUBOT.urdf
@@ -25,7 +26,8 @@ int main(int argc, char** argv) {
   }
   using namespace fvx::capmap;
   const Arm arm = Arm::from_urdf(argv[1], {"base_link", "arm_link_5"});
-  BuildConfig config;  // 5 cm, 200 directions, defaults
+  BuildConfig config;  // 5 cm, 200 directions
+  config.method = BuildMethod::FkSeededIk;
 
   auto t = std::chrono::steady_clock::now();
   BuildStats full;
@@ -38,16 +40,21 @@ int main(int argc, char** argv) {
               full_s, full.candidates, full.reached, full.ik_iterations, map.voxel_count(),
               std::filesystem::file_size(path) / 1024.0);
 
-  // fk-witness (some pose in the voxel, the axis in the direction's cell), the same grid.
-  BuildConfig witness_config;
-  witness_config.method = BuildMethod::FkWitness;
-  t = std::chrono::steady_clock::now();
-  BuildStats witness;
-  const CapabilityMap witness_map = build_capability_map(arm, witness_config, &witness);
-  std::printf("youBot, 5 cm, 200 directions (fk-witness): %.2f s, %zu configurations, %zu bits set, estimated recall %.4f "
-              "(%.1fx faster than FK-seeded IK)\n",
-              seconds_since(t), witness.fk_samples, witness.reached, witness.estimated_recall,
-              full_s / seconds_since(t));
+  // fk-witness (some pose in the voxel, the axis in the direction's cell), the same grid and
+  // at 2.5 cm: the defaults.
+  for (const double voxel_m : {0.05, 0.025}) {
+    BuildConfig witness_config;
+    witness_config.voxel_m = voxel_m;
+    t = std::chrono::steady_clock::now();
+    BuildStats witness;
+    const CapabilityMap witness_map = build_capability_map(arm, witness_config, &witness);
+    const double witness_s = seconds_since(t);
+    witness_map.save(path);
+    std::printf("youBot, %.1f cm, 200 directions (fk-witness): %.2f s, %zu configurations, %zu bits set, estimated recall "
+                "%.4f, file %.0f KB (%.1fx faster than FK-seeded IK at 5 cm)\n",
+                voxel_m * 100, witness_s, witness.fk_samples, witness.reached, witness.estimated_recall,
+                std::filesystem::file_size(path) / 1024.0, full_s / witness_s);
+  }
 
   // The same z-slab (the middle of 8) both ways.
   config.shard_count = 8;

@@ -98,8 +98,11 @@ TEST(CliExplore, WritesTheTableAndASessionThatReadsBack) {
 
 // The command line on both replicas (the arm at the origin, each victim's size), with
 // U counting only what the sensor can measure: the loop finds the victim and ends as the
-// paper's did, with utility 0, within 15 views. (With the default U void cells nearer than
-// the minimum depth, which no scan measures, keep U above 0: the loop runs to its limit.)
+// paper's did, with utility 0, within 20 views (the paper: 5 and 7). With the fk-seeded-ik
+// capability map shipped before, 10 and 14 views sufficed, partly because it reached so
+// little that no sampled orientation was reachable any more; the fk-witness map reaches
+// more, and paper-setting-1 takes 17. (With the default U void cells nearer than the
+// minimum depth, which no scan measures, keep U above 0: the loop runs to its limit.)
 TEST(CliExplore, ThePaperReplicasEndWithUtilityZero) {
   const TempDir dir;
   struct Run {
@@ -108,11 +111,11 @@ TEST(CliExplore, ThePaperReplicasEndWithUtilityZero) {
   for (const Run& run : {Run{"paper-setting-1", "0.08", "2"}, Run{"paper-setting-2", "0.06", "3"}}) {
     const RunResult r = run_fvx(dir, "explore '" + source("data/scenes/" + run.scene + ".ply") + "'" +
                                          arm("0,0,0,0,0,0") + " --target-size " + run.target_size + " --seed " +
-                                         run.seed + " --far-voids-only --format json -o " + run.scene);
+                                         run.seed + " --far-voids-only --max-views 20 --format json -o " + run.scene);
     ASSERT_EQ(r.status, 0) << r.err;
     const json results = json::parse(r.out)["results"];
     EXPECT_TRUE(results["utility_exhausted"].get<bool>()) << run.scene << ": " << results["end"];
-    EXPECT_LE(results["views"].get<int>(), 15) << run.scene;
+    EXPECT_LE(results["views"].get<int>(), 20) << run.scene;
     EXPECT_EQ(results["rows"].back()["void_cells"], 0) << run.scene;
     EXPECT_TRUE(results["rows"].back()["target_seen"].get<bool>()) << run.scene;
     EXPECT_GE(results["rows"].back()["known_fraction"].get<double>(), 0.95) << run.scene;

@@ -2,8 +2,10 @@
 /// \file
 /// Stage `capmap`, part 2: the capability map (Zacharias, Borst, Hirzinger, IROS 2007) and
 /// its file. A voxel grid around the arm base; in each voxel N viewing directions on a
-/// golden-angle spiral; a bit per direction says whether IK reaches the voxel centre looking
-/// along it, roll free (ARCHITECTURE.md §3). A 5-DOF arm reaches only an arc of directions at
+/// golden-angle spiral; a bit per direction says whether some configuration puts the sensor
+/// in the voxel with its viewing axis in the direction's cell (fk-witness, the default) or
+/// whether IK reaches the voxel centre looking along it (the IK methods), roll free
+/// (ARCHITECTURE.md §3). A 5-DOF arm reaches only an arc of directions at
 /// each point, so the bitset is the data; the reachability index is 100 · reachable / N.
 #include <Eigen/Geometry>
 #include <array>
