@@ -85,4 +85,10 @@ void require_readable_file(const std::string& path) {
   if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
 }
 
+void create_folder(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (ec) throw FileError(path, "cannot create the folder: " + ec.message());
+}
+
 }  // namespace fvx

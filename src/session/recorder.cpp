@@ -19,13 +19,13 @@ Recorder::Recorder(std::string dir, Manifest manifest, const io::DepthCamera& se
     : dir_(std::move(dir)), manifest_(std::move(manifest)), sensor_(sensor) {
   FVX_ASSERT(manifest_.views.empty(), "Recorder: a new session has no views");
   const std::filesystem::path root(dir_);
-  for (const char* sub : {"scans", "maps", "reports"}) std::filesystem::create_directories(root / sub);
+  for (const char* sub : {"scans", "maps", "reports"}) create_folder((root / sub).string());
   write_depth_camera((root / manifest_.sensor).string(), sensor_);
   write_manifest(dir_, manifest_);
 }
 
 Recorder::Recorder(std::string dir) : dir_(std::move(dir)) {
-  for (const char* sub : {"maps", "reports"}) std::filesystem::create_directories(std::filesystem::path(dir_) / sub);
+  for (const char* sub : {"maps", "reports"}) create_folder((std::filesystem::path(dir_) / sub).string());
 }
 
 void Recorder::save_map(int view, const map::OccupancyMap& map) const {

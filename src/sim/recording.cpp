@@ -36,7 +36,7 @@ std::vector<RecordedFrame> record_frames(const RayCaster& caster, const std::vec
                                          const std::function<void(std::size_t)>& progress) {
   const bool png = format == FrameFormat::DepthPng;
   const std::filesystem::path folder = output;
-  if (to_folder) std::filesystem::create_directories(folder);
+  if (to_folder) create_folder(folder.string());
   std::vector<RecordedFrame> frames;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     progress(i);

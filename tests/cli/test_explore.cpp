@@ -192,6 +192,10 @@ TEST(CliExplore, BadInputIsRefusedBeforeASessionIsWritten) {
   const RunResult full = run_fvx(dir, "explore" + kScene + arm() + " -o full");
   EXPECT_EQ(full.status, 2) << full.err;
   EXPECT_NE(full.err.find("not an empty folder"), std::string::npos) << full.err;
+  const RunResult blocked = run_fvx(dir, "explore" + kScene + arm() + " --max-views 1 -o full/keep.txt/session");
+  EXPECT_EQ(blocked.status, 1) << blocked.err;
+  EXPECT_EQ(line_count(blocked.err), 1u) << blocked.err;
+  EXPECT_NE(blocked.err.find("keep.txt/session/scans: cannot create the folder"), std::string::npos) << blocked.err;
   EXPECT_EQ(slurp(dir / "full/keep.txt"), "mine\n");
 }
 

@@ -423,6 +423,11 @@ TEST(CliReplay, BadInputIsRefusedOnOneLine) {
     EXPECT_FALSE(std::filesystem::exists(dir / "out")) << args;
   }
   EXPECT_EQ(slurp(dir / "full/keep.txt"), "keep");
+  // An output folder that cannot be created (a file in the way) is named, with the reason.
+  const RunResult blocked = run_fvx(dir, "replay session -o full/keep.txt/out");
+  EXPECT_EQ(blocked.status, 1) << blocked.err;
+  EXPECT_EQ(line_count(blocked.err), 1u) << blocked.err;
+  EXPECT_NE(blocked.err.find("full/keep.txt/out/maps: cannot create the folder"), std::string::npos) << blocked.err;
 }
 
 // Real recorded data: both sequences run to the end, and the utility column is the void-cell

@@ -26,4 +26,8 @@ std::string lowercase_extension(const std::string& path);
 /// Throws FileError if `path` does not exist or is not a readable regular file.
 void require_readable_file(const std::string& path);
 
+/// Creates the folder `path` and its parents (nothing when it exists); FileError naming the
+/// folder and the reason (a file in the way, no permission) otherwise.
+void create_folder(const std::string& path);
+
 }  // namespace fvx
