@@ -9,6 +9,7 @@
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::capmap {
 
@@ -149,7 +150,7 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
   std::vector<std::uint64_t> set((bits + 63) / 64, 0);  // every bit of the grid, for the estimate
   const std::size_t limit = config.fk_samples ? config.fk_samples : std::size_t(1) << 27;
   constexpr std::size_t kChunk = 4096;  // a generator per chunk: thread-count independent
-  const unsigned threads = std::max(1u, config.threads ? config.threads : std::thread::hardware_concurrency());
+  const unsigned threads = core::worker_count(config.threads);
   for (std::size_t round = 0; s.fk_samples < limit && !(cancel && cancel->load()); ++round) {
     const std::size_t n = std::min(kWitnessRound, limit - s.fk_samples), chunks = (n + kChunk - 1) / kChunk;
     std::vector<std::int64_t> landed(n);
@@ -221,7 +222,7 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
       done.fetch_add(1);
     }
   };
-  const unsigned threads = std::max(1u, config.threads ? config.threads : std::thread::hardware_concurrency());
+  const unsigned threads = core::worker_count(config.threads);
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
   if (progress) {

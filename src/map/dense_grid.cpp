@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::map {
 
@@ -148,7 +149,7 @@ core::LargeVector<float> squared_distance_to(const DenseGrid& grid, VoxelState s
   const Eigen::Vector3i n = grid.size();
   core::LargeVector<float> dist(grid.cell_count());
   for (std::size_t i = 0; i < dist.size(); ++i) dist[i] = grid.state_at(i) == state ? 0.0f : INFINITY;
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = core::worker_count(threads);
   if (dist.empty()) return dist;
   transform_x(dist, n, threads, max_sq);
   transform_tiled(dist, n, 1, threads, max_sq);

@@ -10,6 +10,7 @@
 #include "key_bitmap.hpp"
 #include "ray_keys.hpp"
 #include "tree.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::map {
 namespace {
@@ -147,8 +148,7 @@ Integration OccupancyMap::integrate(const std::vector<Eigen::Vector3f>& points_w
   const std::uint64_t bits = DenseKeyBitmap::bits_for(key_min, key_max);
   if (bits <= DenseKeyBitmap::kMaxBits) {
     // Threads pay off from ~10⁴ rays; each needs its own bitmap, so large boxes use fewer.
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned threads = ends.size() < 10000 || bits > (std::uint64_t(1) << 28) ? 1u : std::min(cores, 8u);
+    const unsigned threads = ends.size() < 10000 || bits > (std::uint64_t(1) << 28) ? 1u : core::worker_count(0, 8);
     update_tree(tree, trace_free_cells(tree, origin, rays, key_min, key_max, threads), ends, key_min,
                 key_max, result);
   } else {

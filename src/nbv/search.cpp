@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::nbv::detail {
 
@@ -232,9 +233,7 @@ bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& prun
 
 void Search::parallel(std::size_t n, const std::function<void(std::size_t, viewpoints::FovScorer::Workspace&)>& fn,
                       const char* stage) const {
-  const unsigned threads =
-      std::max(1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
-                                      unsigned(std::max<std::size_t>(1, n))));
+  const unsigned threads = core::worker_count(config.threads, n);
   if (workspaces.size() < threads) workspaces.resize(threads);
   std::atomic<std::size_t> next{0};
   auto work = [&](unsigned t) {

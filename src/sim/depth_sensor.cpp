@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::sim {
 
@@ -112,8 +113,7 @@ Frame render(const RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
     }
   };
 
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned threads = std::max(1u, std::min(config.threads ? config.threads : cores, unsigned(K.height)));
+  const unsigned threads = core::worker_count(config.threads, std::size_t(K.height));
   std::vector<Counts> counts(threads);
   std::vector<std::thread> pool;
   const int rows_per_thread = (K.height + int(threads) - 1) / int(threads);

@@ -7,6 +7,7 @@
 
 #include "fvx/map/dense_grid.hpp"
 #include "fvx/voids/voids.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::sim {
 namespace {
@@ -87,7 +88,7 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
   const double R = gt.resolution_m();
   const Eigen::Vector3d lo = gt.center_of(gt.first_cell()) - Eigen::Vector3d::Constant(R / 2);
   const map::DenseGrid grid(truth, Eigen::AlignedBox3d(lo, lo + gt.size().cast<double>() * R));
-  const unsigned n = std::max(1u, threads ? threads : std::thread::hardware_concurrency());
+  const unsigned n = core::worker_count(threads);
   std::vector<std::vector<std::uint8_t>> revealed(n, std::vector<std::uint8_t>(grid.cell_count(), 0));
   std::atomic<std::size_t> next{0};
   auto work = [&](unsigned t) {
@@ -153,7 +154,7 @@ void ExplorationScore::restrict_target_to_views(const RayCaster& caster,
   const Eigen::Vector3i first = (above_floor.min().array() / R).floor().cast<int>();
   const Eigen::Vector3i size = (above_floor.max().array() / R).floor().cast<int>() - first.array() + 1;
   auto slot = [&](const Eigen::Vector3i& k) { return (std::size_t(k.z()) * size.y() + k.y()) * size.x() + k.x(); };
-  const unsigned n = std::max(1u, threads ? threads : std::thread::hardware_concurrency());
+  const unsigned n = core::worker_count(threads);
   std::vector<std::vector<std::uint8_t>> measured(n, std::vector<std::uint8_t>(std::size_t(size.prod()), 0));
   std::atomic<std::size_t> next{0};
   auto work = [&](unsigned t) {

@@ -12,6 +12,7 @@
 
 #include "fvx/core/error.hpp"
 #include "fvx/core/ray_box.hpp"
+#include "fvx/core/threads.hpp"
 
 namespace fvx::utility {
 
@@ -324,9 +325,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
   std::size_t exact_vectors = 0;
   const std::vector<Plan> plans = plan(a, order, frontier_cells, R, config, exact_vectors);
 
-  const unsigned threads = std::max(
-      1u, std::min<unsigned>(config.threads ? config.threads : std::thread::hardware_concurrency(),
-                             unsigned(std::max<std::size_t>(1, order.size()))));
+  const unsigned threads = core::worker_count(config.threads, order.size());
   Shared shared;
   shared.util_cells.assign(grid.cell_count(), 0.0);  // all bits zero: the sum 0
   shared.contributors = Contributors(grid.cell_count());
