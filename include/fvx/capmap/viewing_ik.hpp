@@ -62,9 +62,10 @@ bool in_bit(const CapabilityMap& map, std::int64_t voxel, int direction, const E
 
 /// The region of an fk-witness bit for IkConfig::region: inside when the sensor lies in
 /// `voxel` and the axis in the cell of `direction`. Outside, the position error points to the
-/// voxel shrunk by 5 % of its edge (to enter it, not to touch it), and the direction error
-/// turns the axis along the great circle to the direction's own point until it is 5 % of the
-/// mean spacing inside the cell (a spherical Voronoi cell is convex, so that path stays in).
+/// voxel shrunk by 1 % of its edge on each side (to enter it, not to touch it), and the
+/// direction error turns the axis along the great circle to the direction's own point until
+/// it is 1 % of the mean spacing inside the cell (a spherical Voronoi cell is convex, so that
+/// path stays in). Larger margins (5 %) left the descent short of bits thinner than them.
 std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&, Eigen::Vector3d&, Eigen::Vector3d&)>
 bit_region(const CapabilityMap& map, std::int64_t voxel, int direction);
 

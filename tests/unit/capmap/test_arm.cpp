@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <random>
 
 #include "fvx/capmap/viewing_ik.hpp"
 #include "fvx/core/error.hpp"
@@ -79,6 +80,39 @@ TEST(ViewingIkRealData, RoundTripsOnYoubotAndSo101) {
   FVX_REAL_DATA_OR_SKIP(so101, "arms/so101_arm.urdf");
   expect_round_trips(Arm::from_urdf(youbot, {"base_link", "arm_link_5"}), "youbot");
   expect_round_trips(Arm::from_urdf(so101, {"base_link", "gripper_frame_link"}), "so101");
+}
+
+// An fk-witness bit's region (the IK's goal in solve_in_region): from any pose outside it,
+// one step along its errors lands inside the bit, in its voxel with the axis in its
+// direction's cell, wherever the pose starts (up to two voxels off, any direction).
+TEST(ViewingIk, OneStepAlongABitRegionsErrorsLandsInTheBit) {
+  CapabilityHeader h;
+  h.voxel_m = 0.1;
+  h.origin_m = Eigen::Vector3d::Constant(-0.5);
+  h.dims = {{10, 10, 10}};
+  h.directions = 200;
+  const CapabilityMap map(h);
+  std::mt19937_64 rng(4);
+  std::uniform_int_distribution<int> inner(2, 7), direction(0, h.directions - 1);
+  std::uniform_real_distribution<double> offset(-2.5, 2.5);
+  std::normal_distribution<double> g(0, 1);
+  int outside = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const std::int64_t voxel = inner(rng) + 10 * (inner(rng) + 10 * inner(rng));
+    const int i = direction(rng);
+    const Eigen::Vector3d p = map.center_of(voxel) + h.voxel_m * Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    const Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    Eigen::Vector3d e_p = Eigen::Vector3d::Zero(), e_r = Eigen::Vector3d::Zero();
+    if (bit_region(map, voxel, i)(p, d, e_p, e_r)) {
+      EXPECT_TRUE(in_bit(map, voxel, i, p, d));
+      continue;
+    }
+    ++outside;
+    const Eigen::Vector3d turned =
+        e_r.norm() > 0 ? Eigen::Vector3d(Eigen::AngleAxisd(e_r.norm(), e_r.normalized()) * d) : d;
+    EXPECT_TRUE(in_bit(map, voxel, i, p + e_p, turned)) << "trial " << trial;
+  }
+  EXPECT_GT(outside, 2900);
 }
 
 TEST(Arm, BadModelsAreRefused) {
