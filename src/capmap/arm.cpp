@@ -147,6 +147,13 @@ Eigen::Vector3d Arm::viewing_direction(const Eigen::VectorXd& q) const {
   return fk(q).linear() * impl_->config.viewing_axis_sensor;
 }
 
+Eigen::VectorXd Arm::random_configuration(std::mt19937_64& rng) const {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Eigen::VectorXd q(dof());
+  for (int j = 0; j < dof(); ++j) q[j] = lower_rad()[j] + unit(rng) * (upper_rad()[j] - lower_rad()[j]);
+  return q;
+}
+
 void Arm::jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen::Matrix3Xd& J_rotation) const {
   KDL::JntArray joints(unsigned(q.size()));
   joints.data = q;

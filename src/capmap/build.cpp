@@ -43,13 +43,6 @@ std::vector<std::string> BuildConfig::validate() const {
 
 namespace {
 
-Eigen::VectorXd random_configuration(const Arm& arm, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::VectorXd q(arm.dof());
-  for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
-  return q;
-}
-
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
   std::uint64_t x = a ^ (b + 0x9E3779B97F4A7C15ull + (a << 6) + (a >> 2));
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -73,7 +66,7 @@ CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const Dir
   const double v = config.voxel_m;
   std::mt19937_64 rng(mix(config.seed, 1));
   Eigen::AlignedBox3d reach;
-  for (std::size_t i = 0; i < config.workspace_samples; ++i) reach.extend(arm.fk(random_configuration(arm, rng)).translation());
+  for (std::size_t i = 0; i < config.workspace_samples; ++i) reach.extend(arm.fk(arm.random_configuration(rng)).translation());
   CapabilityHeader h;
   const ArmConfig& ac = arm.config();
   h.base_link = ac.base_link;
@@ -100,29 +93,32 @@ CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const Dir
   return h;
 }
 
+/// The voxels of this shard's z-slab, [first, end) in index order: shards split the z layers.
+std::pair<std::int64_t, std::int64_t> shard_voxels(const CapabilityHeader& h, const BuildConfig& config) {
+  const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
+  return {std::int64_t(h.dims[2] * config.shard_index / config.shard_count) * layer,
+          std::int64_t(h.dims[2] * (config.shard_index + 1) / config.shard_count) * layer};
+}
+
 /// Step 2: the bits to check in this shard's z-slab — every bit (exhaustive), or those the
 /// FK samples propose, each with the first seed configuration that proposed it.
 std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config, const DirectionSet& directions,
                                       const CapabilityMap& map) {
   const CapabilityHeader& h = map.header();
-  const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
-  const std::uint32_t z_begin = h.dims[2] * config.shard_index / config.shard_count;
-  const std::uint32_t z_end = h.dims[2] * (config.shard_index + 1) / config.shard_count;
+  const auto [first, end] = shard_voxels(h, config);
   std::vector<Candidate> candidates;
   if (config.method == BuildMethod::ExhaustiveIk) {
-    for (std::int64_t voxel = std::int64_t(z_begin) * layer; voxel < std::int64_t(z_end) * layer; ++voxel)
+    for (std::int64_t voxel = first; voxel < end; ++voxel)
       for (int d = 0; d < directions.size(); ++d) candidates.push_back({voxel, d, {}});
     return candidates;
   }
   std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
   std::mt19937_64 fk_rng(mix(config.seed, 2));
   for (std::size_t i = 0, n = config.fk_samples ? config.fk_samples : 400000; i < n; ++i) {
-    const Eigen::VectorXd q = random_configuration(arm, fk_rng);
+    const Eigen::VectorXd q = arm.random_configuration(fk_rng);
     const Eigen::Isometry3d T = arm.fk(q);
     const std::int64_t voxel = map.voxel_of(T.translation());
-    if (voxel < 0) continue;
-    const auto z = std::uint32_t(voxel / layer);
-    if (z < z_begin || z >= z_end) continue;
+    if (voxel < first || voxel >= end) continue;
     // Every direction within the angle tolerance of the sampled one, not only the nearest:
     // IK may reach each of them, and proposing only the nearest cost 20 % of the recall.
     for (const int d : directions.within(T.linear() * arm.config().viewing_axis_sensor, h.angle_tolerance_rad))
@@ -159,7 +155,7 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
       for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
         std::mt19937_64 rng(mix(mix(config.seed, 3 + round), c));
         for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
-          landed[i] = witness_bit(arm, map, random_configuration(arm, rng));
+          landed[i] = witness_bit(arm, map, arm.random_configuration(rng));
       }
     };
     std::vector<std::thread> pool;
@@ -175,10 +171,8 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
     if (progress) progress(s.fk_samples, limit);
     if (round > 0 && s.estimated_recall >= config.target_recall) break;
   }
-  const std::int64_t layer = std::int64_t(h.dims[0]) * h.dims[1];
-  const std::int64_t begin = std::int64_t(h.dims[2] * config.shard_index / config.shard_count) * layer;
-  const std::int64_t end = std::int64_t(h.dims[2] * (config.shard_index + 1) / config.shard_count) * layer;
-  for (std::int64_t b = begin * directions; b < end * directions; ++b)
+  const auto [first, end] = shard_voxels(h, config);
+  for (std::int64_t b = first * directions; b < end * directions; ++b)
     if (set[std::size_t(b) / 64] >> (b % 64) & 1u) {
       map.set(b / directions, int(b % directions));
       ++s.reached;

@@ -45,13 +45,12 @@ std::vector<std::vector<Eigen::VectorXd>> starts_in_voxels(const CapabilityMap& 
   for (std::size_t i = 0; i < queries.size(); ++i) by_voxel.emplace(queries[i].first, i);
   std::vector<std::vector<std::pair<double, Eigen::VectorXd>>> best(queries.size());
   std::mt19937_64 rng(seed ^ 0x5EEDF00DCAFEull);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Eigen::VectorXd q(arm.dof());
   for (std::size_t s = 0, pool = start_pool(map); s < pool; ++s) {
-    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
-    const auto [first, last] = by_voxel.equal_range(map.voxel_of(arm.fk(q).translation()));
+    const Eigen::VectorXd q = arm.random_configuration(rng);
+    const Eigen::Isometry3d T = arm.fk(q);
+    const auto [first, last] = by_voxel.equal_range(map.voxel_of(T.translation()));
     if (first == last) continue;
-    const Eigen::Vector3d d = arm.viewing_direction(q);
+    const Eigen::Vector3d d = T.linear() * arm.config().viewing_axis_sensor;
     for (auto it = first; it != last; ++it) {
       auto& kept = best[it->second];
       const double dot = d.dot(map.directions()[queries[it->second].second]);
@@ -116,12 +115,10 @@ Evaluation evaluate(const CapabilityMap& map, const Arm& arm, int samples, std::
     e.recall_by_height[z].z_min_m = h.origin_m.z() + double(z) * h.voxel_m;
     e.recall_by_height[z].z_max_m = e.recall_by_height[z].z_min_m + h.voxel_m;
   }
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int i = 0; i < samples; ++i, ++e.recall.queries) {
-    Eigen::VectorXd q(arm.dof());
-    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
-    const Eigen::Vector3d p = arm.fk(q).translation();
-    const bool found = map.reachable(p, arm.viewing_direction(q));
+    const Eigen::Isometry3d T = arm.fk(arm.random_configuration(rng));
+    const Eigen::Vector3d p = T.translation();
+    const bool found = map.reachable(p, T.linear() * arm.config().viewing_axis_sensor);
     e.recall.hits += found;
     const std::int64_t voxel = map.voxel_of(p);
     if (voxel < 0) continue;

@@ -112,15 +112,8 @@ IkResult solve_viewing_ik(const Arm& arm, const Eigen::Vector3d& position_base, 
   FVX_ASSERT(std::abs(direction_base.norm() - 1.0) < 1e-6, "the viewing direction must be a unit vector");
   IkResult result;
   Attempt best;
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int attempt = 0; attempt <= config.restarts; ++attempt) {
-    Eigen::VectorXd q0(arm.dof());
-    if (attempt == 0 && start) {
-      q0 = *start;
-    } else {
-      for (int j = 0; j < arm.dof(); ++j)
-        q0[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
-    }
+    const Eigen::VectorXd q0 = attempt == 0 && start ? *start : arm.random_configuration(rng);
     const Attempt a = descend(arm, position_base, direction_base, config, q0);
     result.iterations += a.iterations;
     result.attempts = attempt + 1;

@@ -221,11 +221,12 @@ bool Search::keep_orientation(Pose& pose, std::uint64_t pose_seed, Pruning& prun
     }
     pose.joints_rad = ik.q;
     if (ik.snapped) {  // the map's bit holds a pose near this one: the view moves there
-      const Eigen::Vector3d p_snapped = reach->T_world_base * reach->arm->fk(ik.q).translation();
+      const Eigen::Isometry3d T_base_reached = reach->arm->fk(ik.q);
+      const Eigen::Vector3d p_snapped = reach->T_world_base * T_base_reached.translation();
       const std::optional<map::VoxelKey> cell = grid.cell_of(p_snapped);
       if (!cell || !keep_position(*cell, p_snapped, pruning)) return false;
-      pose.T_world_sensor = snapped_pose(pose.T_world_sensor, p_snapped,
-                                         reach->T_world_base.linear() * reach->arm->viewing_direction(ik.q));
+      const Eigen::Vector3d axis_base = T_base_reached.linear() * reach->arm->config().viewing_axis_sensor;
+      pose.T_world_sensor = snapped_pose(pose.T_world_sensor, p_snapped, reach->T_world_base.linear() * axis_base);
     }
   }
   return true;

@@ -6,6 +6,7 @@
 /// viewing axis, and roll about that axis is free (ARCHITECTURE.md §3).
 #include <Eigen/Geometry>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ class Arm {
   Eigen::Isometry3d fk(const Eigen::VectorXd& q) const;
   /// The viewing direction in the base frame at `q`.
   Eigen::Vector3d viewing_direction(const Eigen::VectorXd& q) const;
+  /// Joint values drawn uniformly within the limits, one draw of `rng` per joint in order.
+  Eigen::VectorXd random_configuration(std::mt19937_64& rng) const;
   /// d(position of the sensor)/dq (3×n) and d(rotation vector)/dq (3×n), base frame.
   void jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen::Matrix3Xd& J_rotation) const;
 

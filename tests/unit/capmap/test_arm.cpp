@@ -53,13 +53,11 @@ TEST(Arm, JacobianMatchesFiniteDifferencesWithAMount) {
 /// FK of random configurations → their viewing pose → IK from random starts.
 void expect_round_trips(const Arm& arm, const char* name) {
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(0, 1);
   const IkConfig config;
   int reached = 0;
   const int trials = 200;
   for (int t = 0; t < trials; ++t) {
-    Eigen::VectorXd q(arm.dof());
-    for (int j = 0; j < arm.dof(); ++j) q[j] = arm.lower_rad()[j] + unit(rng) * (arm.upper_rad()[j] - arm.lower_rad()[j]);
+    const Eigen::VectorXd q = arm.random_configuration(rng);
     const Eigen::Vector3d p = arm.fk(q).translation(), d = arm.viewing_direction(q);
     const IkResult r = solve_viewing_ik(arm, p, d, config, rng);
     if (!r.reached) continue;
