@@ -2,7 +2,7 @@
 # Regenerates data/arms/fvx-arm.fcm: the capability map of the project's own arm
 # (data/arms/fvx-arm.urdf) at 10 cm, 200 directions, seed 1, fk-witness (the default) — small
 # enough to commit (180 KB) for the tests and the demo. Deterministic on any thread count;
-# about 3 s. fvx capmap eval, 4000 queries: precision 0.999, recall 0.995 (the fk-seeded-ik
+# under a second. fvx capmap eval, 4000 queries: precision 0.999, recall 0.996 (the fk-seeded-ik
 # map shipped before: 0.998 and 0.684).
 set -euo pipefail
 cd "$(dirname "$0")/.."

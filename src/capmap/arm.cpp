@@ -22,6 +22,7 @@ struct Arm::Impl {
   std::vector<std::string> joint_names;
   Eigen::VectorXd lower, upper;
   std::string urdf_hash;
+  std::optional<FirstJointAxis> first_joint_axis;
   // KDL is not safe to share between threads: its solvers keep scratch state and
   // KDL::Joint caches its last pose in mutable members. fk() and jacobian() work on a copy
   // of the chain, so that one Arm serves many threads (a build found the race: maps
@@ -52,7 +53,37 @@ std::string fnv1a_hex(const std::string& text) {
   return out;
 }
 
+/// The first movable joint's axis line in the base frame, when it is revolute: the fixed
+/// segments before it only move the line.
+std::optional<FirstJointAxis> first_joint_axis_of(const KDL::Chain& chain) {
+  KDL::Frame T_base_segment = KDL::Frame::Identity();
+  for (unsigned i = 0; i < chain.getNrOfSegments(); ++i) {
+    const KDL::Segment& segment = chain.getSegment(i);
+    const KDL::Joint& joint = segment.getJoint();
+    if (joint.getType() == KDL::Joint::None) {
+      T_base_segment = T_base_segment * segment.pose(0.0);
+      continue;
+    }
+    if (joint.getType() != KDL::Joint::RotAxis) return std::nullopt;
+    const KDL::Vector axis = T_base_segment.M * joint.JointAxis(), point = T_base_segment * joint.JointOrigin();
+    return FirstJointAxis{Eigen::Vector3d(point.x(), point.y(), point.z()),
+                          Eigen::Vector3d(axis.x(), axis.y(), axis.z()).normalized()};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+Eigen::Isometry3d FirstJointAxis::turn(const Eigen::Isometry3d& T_base_sensor_at_zero, double q0_rad) const {
+  Eigen::Isometry3d R = Eigen::Isometry3d::Identity();
+  R.linear() = Eigen::AngleAxisd(q0_rad, direction_base).toRotationMatrix();
+  R.translation() = point_base - R.linear() * point_base;
+  return R * T_base_sensor_at_zero;
+}
+
+double FirstJointAxis::tilt_from_vertical_rad() const {
+  return std::atan2(std::hypot(direction_base.x(), direction_base.y()), std::abs(direction_base.z()));
+}
 
 Arm Arm::from_urdf(const std::string& urdf_path, const ArmConfig& config) {
   require_readable_file(urdf_path);
@@ -118,6 +149,7 @@ Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, cons
   if (impl->joint_names.empty()) throw UsageError(source + ": no movable joint between " + config.base_link + " and " + config.tip_link);
   impl->lower = Eigen::Map<Eigen::VectorXd>(lower.data(), Eigen::Index(lower.size()));
   impl->upper = Eigen::Map<Eigen::VectorXd>(upper.data(), Eigen::Index(upper.size()));
+  impl->first_joint_axis = first_joint_axis_of(impl->chain);
   return Arm(std::move(impl));
 }
 
@@ -132,6 +164,7 @@ const Eigen::VectorXd& Arm::lower_rad() const { return impl_->lower; }
 const Eigen::VectorXd& Arm::upper_rad() const { return impl_->upper; }
 const ArmConfig& Arm::config() const { return impl_->config; }
 const std::string& Arm::urdf_hash() const { return impl_->urdf_hash; }
+const std::optional<FirstJointAxis>& Arm::first_joint_axis() const { return impl_->first_joint_axis; }
 
 Eigen::Isometry3d Arm::fk(const Eigen::VectorXd& q) const {
   FVX_ASSERT(q.size() == dof(), "joint vector size");

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
 #include "fvx/core/pose.hpp"
 #include "fvx/core/threads.hpp"
 
@@ -28,6 +29,13 @@ BuildMethod parse_build_method(const std::string& name, const std::string& what)
   throw UsageError(what + " '" + name + "': expected fk-witness, fk-seeded-ik or exhaustive-ik");
 }
 
+void parse_shard(const std::string& text, const std::string& what, BuildConfig& config) {
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw UsageError(what + ": expected I/N, e.g. 3/8");
+  config.shard_count = std::uint32_t(parse_int_in(text.substr(slash + 1), what + " N", 1, 100000));
+  config.shard_index = std::uint32_t(parse_int_in(text.substr(0, slash), what + " I", 1, config.shard_count)) - 1;
+}
+
 std::vector<std::string> BuildConfig::validate() const {
   std::vector<std::string> problems;
   if (!(voxel_m > 0.0) || !std::isfinite(voxel_m)) problems.push_back("voxel_m must be > 0 m");
@@ -37,6 +45,7 @@ std::vector<std::string> BuildConfig::validate() const {
   if (ik_restarts < 0) problems.push_back("ik_restarts must be >= 0");
   if (workspace_samples < 10) problems.push_back("workspace_samples must be at least 10");
   if (!(target_recall > 0.0 && target_recall <= 1.0)) problems.push_back("target_recall must be in (0, 1]");
+  if (turns_per_fk < 1 || turns_per_fk > 4096) problems.push_back("turns_per_fk must be 1 to 4096");
   if (shard_count < 1 || shard_index >= shard_count) problems.push_back("shard_index must be below shard_count");
   return problems;
 }
@@ -128,12 +137,42 @@ std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config,
   return candidates;
 }
 
-/// The bit of the sensor pose at `q`: (voxel, nearest direction) as one number, −1 outside.
-std::int64_t witness_bit(const Arm& arm, const CapabilityMap& map, const Eigen::VectorXd& q) {
-  const Eigen::Isometry3d T = arm.fk(q);
-  const std::int64_t voxel = map.voxel_of(T.translation());
+/// The bit of the sensor pose `T_base_sensor`: (voxel, nearest direction) as one number, −1
+/// outside.
+std::int64_t witness_bit(const Arm& arm, const CapabilityMap& map, const Eigen::Isometry3d& T_base_sensor) {
+  const std::int64_t voxel = map.voxel_of(T_base_sensor.translation());
   if (voxel < 0) return -1;
-  return voxel * map.directions().size() + map.directions().nearest(T.linear() * arm.config().viewing_axis_sensor);
+  return voxel * map.directions().size() + map.directions().nearest(T_base_sensor.linear() * arm.config().viewing_axis_sensor);
+}
+
+/// Witnesses [i, end) of a chunk from `rng`. Without a revolute first joint, one configuration
+/// each. With one, groups of `turns_per_fk`: a configuration, then the first joint drawn again
+/// for each further witness; the group's poses are one FK at q₀ = 0 turned about the joint's
+/// axis to each q₀ (use_first_joint_turn), or one FK each (the oracle of the turn).
+void draw_witnesses(const Arm& arm, const BuildConfig& config, const CapabilityMap& map, std::mt19937_64& rng,
+                    std::size_t i, std::size_t end, std::int64_t* landed, std::size_t& fk_evaluations) {
+  const std::optional<FirstJointAxis>& axis = arm.first_joint_axis();
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> q0(std::size_t(config.turns_per_fk));
+  while (i < end) {
+    Eigen::VectorXd q = arm.random_configuration(rng);
+    const std::size_t group = axis ? std::min(end - i, std::size_t(config.turns_per_fk)) : 1;
+    q0[0] = q[0];
+    for (std::size_t k = 1; k < group; ++k) q0[k] = arm.lower_rad()[0] + unit(rng) * (arm.upper_rad()[0] - arm.lower_rad()[0]);
+    if (axis && config.use_first_joint_turn) {
+      q[0] = 0.0;
+      const Eigen::Isometry3d T_at_zero = arm.fk(q);
+      ++fk_evaluations;
+      for (std::size_t k = 0; k < group; ++k) landed[i + k] = witness_bit(arm, map, axis->turn(T_at_zero, q0[k]));
+    } else {
+      for (std::size_t k = 0; k < group; ++k) {
+        q[0] = q0[k];
+        landed[i + k] = witness_bit(arm, map, arm.fk(q));
+        ++fk_evaluations;
+      }
+    }
+    i += group;
+  }
 }
 
 /// The fk-witness build: rounds of FK samples set the bits they land in, on all cores, until
@@ -150,13 +189,14 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
   for (std::size_t round = 0; s.fk_samples < limit && !(cancel && cancel->load()); ++round) {
     const std::size_t n = std::min(kWitnessRound, limit - s.fk_samples), chunks = (n + kChunk - 1) / kChunk;
     std::vector<std::int64_t> landed(n);
-    std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> next{0}, fk_evaluations{0};
     auto work = [&] {
+      std::size_t evaluations = 0;
       for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
         std::mt19937_64 rng(mix(mix(config.seed, 3 + round), c));
-        for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
-          landed[i] = witness_bit(arm, map, arm.random_configuration(rng));
+        draw_witnesses(arm, config, map, rng, c * kChunk, std::min(n, (c + 1) * kChunk), landed.data(), evaluations);
       }
+      fk_evaluations += evaluations;
     };
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
@@ -167,6 +207,7 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
     for (const std::int64_t b : landed)
       if (b >= 0) set[std::size_t(b) / 64] |= std::uint64_t(1) << (b % 64);
     s.fk_samples += n;
+    s.fk_evaluations += fk_evaluations.load();
     if (round > 0) s.estimated_recall = double(known) / double(n);
     if (progress) progress(s.fk_samples, limit);
     if (round > 0 && s.estimated_recall >= config.target_recall) break;

@@ -2,6 +2,7 @@
 #include <atomic>
 #include <csignal>
 #include <cmath>
+#include <iostream>
 
 #include "command_table.hpp"
 #include "fvx/core/atomic_file.hpp"  // lowercase_extension
@@ -48,6 +49,8 @@ const CommandSpec kCapmapSpec = {
         {"fk-samples", 0, "N", "build: at most N configurations (fk-witness, default 2^27), or the forward pre-pass (fk-seeded-ik, default 400000)", "/config/fk_samples", "", in(1, 1e9)},
         {"restarts", 0, "N", "build, IK methods: IK restarts per bit after the seed", "/config/ik_restarts",
          dflt(kBuild.ik_restarts), in(0, 1000)},
+        {"fk-per-witness", 0, nullptr, "build, fk-witness: forward kinematics for every witness instead of one per "
+         "group turned about the first joint's axis (the same bits, slower: a check)", "/config/use_first_joint_turn"},
         {"exhaustive", 0, nullptr, "build: the same as --method exhaustive-ik (a slow baseline)", "/results/header/method"},
         threads_option("/config/threads", "build: threads"),
         {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later",
@@ -65,11 +68,6 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 void on_interrupt(int) { g_interrupted = true; }
 
-Eigen::Vector3d vec3(const Args& args, const std::string& name) {
-  const auto v = parse_double_list(args.get(name), "--" + name, 3);
-  return {v[0], v[1], v[2]};
-}
-
 std::string need(const Args& args, const std::string& name, const std::string& action) {
   if (!args.has(name)) throw UsageError("fvx capmap " + action + ": --" + name + " is required");
   return args.get(name);
@@ -77,15 +75,18 @@ std::string need(const Args& args, const std::string& name, const std::string& a
 
 capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std::string& tip, const Args& args) {
   capmap::ArmConfig config{base, tip};
-  if (args.has("mount")) {
-    config.T_tip_sensor = parse_xyz_rpy_deg(args.get("mount"), "--mount");
-  }
-  if (args.has("axis")) {
-    const Eigen::Vector3d axis = vec3(args, "axis");
-    if (axis.norm() < 1e-9) throw UsageError("--axis: the viewing axis must not be zero");
-    config.viewing_axis_sensor = axis.normalized();
-  }
+  if (args.has("mount")) config.T_tip_sensor = parse_xyz_rpy_deg(args.get("mount"), "--mount");
+  if (args.has("axis")) config.viewing_axis_sensor = parse_direction(args.get("axis"), "--axis");
   return capmap::Arm::from_urdf(urdf, config);
+}
+
+/// Options given that the chosen method does not use: said, not silently dropped.
+std::vector<std::string> ignored_build_options(const Args& args, bool witness) {
+  std::vector<std::string> ignored;
+  for (const char* name : {"restarts", "target-recall", "fk-per-witness"})
+    if (args.has(name) && witness == (name[0] == 'r'))
+      ignored.push_back(std::string("--") + name + (witness ? " is used by the IK methods only" : " is used by fk-witness only"));
+  return ignored;
 }
 
 int build(const Args& args, Json& report) {
@@ -106,14 +107,11 @@ int build(const Args& args, Json& report) {
   if (args.has("method")) c.method = capmap::parse_build_method(args.get("method"), "--method");
   if (args.has("exhaustive") && args.has("method")) throw UsageError("fvx capmap build: give --exhaustive or --method");
   if (args.has("exhaustive")) c.method = capmap::BuildMethod::ExhaustiveIk;
-  if (args.has("shard")) {
-    const std::string s = args.get("shard");
-    const auto slash = s.find('/');
-    if (slash == std::string::npos) throw UsageError("--shard: expected I/N, e.g. 3/8");
-    c.shard_count = std::uint32_t(parse_int_in(s.substr(slash + 1), "--shard N", 1, 100000));
-    c.shard_index = std::uint32_t(parse_int_in(s.substr(0, slash), "--shard I", 1, c.shard_count)) - 1;
-  }
+  if (args.has("shard")) capmap::parse_shard(args.get("shard"), "--shard", c);
+  c.use_first_joint_turn = !args.has("fk-per-witness");
   throw_if_problems("fvx capmap build", c.validate());
+  const std::vector<std::string> warnings = ignored_build_options(args, c.method == capmap::BuildMethod::FkWitness);
+  for (const auto& warning : warnings) std::cerr << "fvx capmap build: warning: " << warning << "\n";
   const capmap::Arm arm = load_arm(args.positional[1], base, tip, args);
   Progress progress(args.has("progress"));
   std::signal(SIGINT, on_interrupt);
@@ -137,16 +135,12 @@ int build(const Args& args, Json& report) {
   std::signal(SIGTERM, SIG_DFL);
   if (g_interrupted) throw Error("fvx capmap build: interrupted; " + output + " was not written");
   map.save(output);
-  report["config"] = {{"seed", c.seed}, {"method", capmap::to_string(c.method)}, {"fk_samples", c.fk_samples},
-                      {"target_recall", c.target_recall}, {"ik_restarts", c.ik_restarts}, {"threads", c.threads}};
-  report["inputs"] = {{"urdf", args.positional[1]}, {"joints", arm.joint_names()}};
-  report["results"] = {{"output", output},
-                       {"header", capmap_header_json(map.header())},
-                       {"voxels", map.voxel_count()},
-                       {"bits", stats.reached},
-                       {"candidates_checked", stats.candidates}, {"ik_iterations", stats.ik_iterations},
-                       {"fk_samples", stats.fk_samples}, {"estimated_recall", stats.estimated_recall},
-                       {"seconds", clock.seconds()}};
+  report["config"] = capmap_build_config_json(c);
+  report["inputs"] = {{"urdf", args.positional[1]}, {"joints", arm.joint_names()},
+                      {"first_joint_axis", capmap_first_joint_axis_json(arm)}};
+  report["results"] = capmap_build_json(map, stats, clock.seconds());
+  report["results"]["output"] = output;
+  report["warnings"] = warnings;
   return 0;
 }
 
@@ -161,13 +155,9 @@ int info(const Args& args, Json& report) {
 int query(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx capmap query: give one map");
   const auto map = capmap::CapabilityMap::load(args.positional[1]);
-  const Eigen::Vector3d p = vec3(args, "point");
+  const Eigen::Vector3d p = parse_vector3(args.get("point"), "--point");
   std::optional<Eigen::Vector3d> direction;
-  if (args.has("direction")) {
-    direction = vec3(args, "direction");
-    if (direction->norm() < 1e-9) throw UsageError("--direction must not be zero");
-    direction->normalize();
-  }
+  if (args.has("direction")) direction = parse_direction(args.get("direction"), "--direction");
   report["inputs"] = {{"map", args.positional[1]}};
   report["results"] = capmap_query_json(map, p, direction);
   return 0;

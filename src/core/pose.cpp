@@ -43,6 +43,17 @@ Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& 
   return pose_from_xyz_rpy(v[0], v[1], v[2], v[3] * d, v[4] * d, v[5] * d);
 }
 
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what) {
+  const std::vector<double> v = parse_double_list(text, what, 3);
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d parse_direction(const std::string& text, const std::string& what) {
+  const Eigen::Vector3d d = parse_vector3(text, what);
+  if (d.norm() < 1e-9) throw UsageError(what + ": the direction must not be zero");
+  return d.normalized();
+}
+
 Eigen::Vector3d rpy_of(const Eigen::Matrix3d& R) {
   // R = Rz(yaw)·Ry(pitch)·Rx(roll): R(2,0) = −sin(pitch).
   const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));

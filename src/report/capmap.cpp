@@ -86,4 +86,32 @@ Json capmap_evaluation_json(const capmap::Evaluation& e, const std::string& meth
           {"recall_by_height", bands}};
 }
 
+Json capmap_first_joint_axis_json(const capmap::Arm& arm) {
+  const auto& axis = arm.first_joint_axis();
+  if (!axis) return nullptr;
+  const Eigen::Vector3d& p = axis->point_base;
+  const Eigen::Vector3d& d = axis->direction_base;
+  return {{"joint", arm.joint_names().front()}, {"point_m", {p.x(), p.y(), p.z()}}, {"direction", {d.x(), d.y(), d.z()}},
+          {"tilt_from_vertical_deg", axis->tilt_from_vertical_rad() * 180.0 / M_PI},
+          {"limits_deg", {arm.lower_rad()[0] * 180.0 / M_PI, arm.upper_rad()[0] * 180.0 / M_PI}}};
+}
+
+Json capmap_build_config_json(const capmap::BuildConfig& c) {
+  return {{"seed", c.seed}, {"method", capmap::to_string(c.method)}, {"fk_samples", c.fk_samples},
+          {"target_recall", c.target_recall}, {"ik_restarts", c.ik_restarts}, {"threads", c.threads},
+          {"turns_per_fk", c.turns_per_fk}, {"use_first_joint_turn", c.use_first_joint_turn}};
+}
+
+Json capmap_build_json(const capmap::CapabilityMap& map, const capmap::BuildStats& stats, double seconds) {
+  return {{"header", capmap_header_json(map.header())},
+          {"voxels", map.voxel_count()},
+          {"bits", stats.reached},
+          {"candidates_checked", stats.candidates},
+          {"ik_iterations", stats.ik_iterations},
+          {"fk_samples", stats.fk_samples},
+          {"fk_evaluations", stats.fk_evaluations},
+          {"estimated_recall", stats.estimated_recall},
+          {"seconds", seconds}};
+}
+
 }  // namespace fvx::report

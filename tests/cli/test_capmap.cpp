@@ -58,6 +58,19 @@ TEST(CliCapmap, BuildInfoQueryExportAndShards) {
   ASSERT_EQ(run_fvx(dir, build + " -o again.fcm").status, 0);
   EXPECT_TRUE(slurp(dir / "again.fcm") == slurp(dir / "arm.fcm")) << "same seed, different file";
   EXPECT_EQ(run_fvx(dir, "capmap merge part1.fcm part3.fcm -o bad.fcm").status, 1);  // a shard missing
+
+  // The fvx arm's yaw turns about the base's z axis: one FK per 8 witnesses, the same bits as
+  // one FK each; an option the method does not use is said, on stderr and in the report.
+  const json axis = built["inputs"]["first_joint_axis"];
+  EXPECT_EQ(axis["joint"], "yaw");
+  EXPECT_NEAR(axis["tilt_from_vertical_deg"].get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(built["results"]["fk_evaluations"].get<long>() * 8, built["results"]["fk_samples"].get<long>());
+  r = run_fvx(dir, build + " --fk-per-witness --restarts 3 -o each.fcm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(slurp(dir / "each.fcm") == slurp(dir / "arm.fcm")) << "--fk-per-witness changed the bits";
+  EXPECT_EQ(json::parse(r.out)["results"]["fk_evaluations"], built["results"]["fk_samples"]);
+  EXPECT_NE(r.err.find("warning: --restarts is used by the IK methods only"), std::string::npos) << r.err;
+  EXPECT_EQ(json::parse(r.out)["warnings"].size(), 1u);
 }
 
 TEST(CliCapmapRealData, YoubotMapAtFiveCentimetresIsPrecise) {

@@ -6,6 +6,7 @@
 /// viewing axis, and roll about that axis is free (ARCHITECTURE.md §3).
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -19,6 +20,21 @@ struct ArmConfig {
   Eigen::Isometry3d T_tip_sensor = Eigen::Isometry3d::Identity();
   /// The sensor's viewing axis in the sensor frame, unit length. Default +z (optical axis).
   Eigen::Vector3d viewing_axis_sensor = Eigen::Vector3d::UnitZ();
+};
+
+/// The line the arm's first movable joint turns about, when that joint is revolute. Every
+/// pose is then this line's rotation of a pose with the joint at 0,
+/// FK(q₀, q₁…) = R(q₀) · FK(0, q₁…): reachability depends on the other joints and the turn
+/// only (RM4D, ICRA 2025, for a first joint about the base's vertical; the identity holds for
+/// any axis). The turn's limits are the joint's.
+struct FirstJointAxis {
+  Eigen::Vector3d point_base = Eigen::Vector3d::Zero();      ///< a point of the axis
+  Eigen::Vector3d direction_base = Eigen::Vector3d::UnitZ();  ///< unit; the joint turns about it
+
+  /// The sensor pose with the first joint turned from 0 to `q0_rad`, from the pose at 0.
+  Eigen::Isometry3d turn(const Eigen::Isometry3d& T_base_sensor_at_zero, double q0_rad) const;
+  /// The angle between the axis and the base's z axis (either way), radians.
+  double tilt_from_vertical_rad() const;
 };
 
 class Arm {
@@ -41,6 +57,9 @@ class Arm {
   const ArmConfig& config() const;
   /// FNV-1a hash of the URDF text, hex: ties capability maps to the model they came from.
   const std::string& urdf_hash() const;
+
+  /// The axis of joint 0, when it is revolute (not prismatic).
+  const std::optional<FirstJointAxis>& first_joint_axis() const;
 
   /// Forward kinematics: T_base_sensor for joint values `q` (radians, metres).
   Eigen::Isometry3d fk(const Eigen::VectorXd& q) const;

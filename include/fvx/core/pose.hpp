@@ -24,6 +24,11 @@ Eigen::Isometry3d pose_from_xyz_rpy(double x, double y, double z, double roll, d
 /// Parses "x,y,z,roll,pitch,yaw" (metres, degrees) as given to `--base` and `--mount`.
 Eigen::Isometry3d parse_xyz_rpy_deg(const std::string& text, const std::string& what);
 
+/// Parses "x,y,z".
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what);
+/// Parses "x,y,z" and normalises it; UsageError naming `what` for a zero vector.
+Eigen::Vector3d parse_direction(const std::string& text, const std::string& what);
+
 /// Parses "ex,ey,ez,tx,ty,tz": a sensor at eye E looking at target T, world z up (optical
 /// frame: x right, y down). UsageError naming `what`.
 Eigen::Isometry3d parse_look_at(const std::string& text, const std::string& what);

@@ -50,6 +50,61 @@ TEST(Arm, JacobianMatchesFiniteDifferencesWithAMount) {
   }
 }
 
+/// The first joint's axis is the line `point`, `direction` (either way), and every pose is the
+/// turn of the pose with that joint at 0: FK(q₀, q₁…) = R(q₀)·FK(0, q₁…), with KDL as oracle.
+void expect_first_joint_turns(const Arm& arm, const Eigen::Vector3d& point, const Eigen::Vector3d& direction,
+                              const char* name) {
+  const auto& axis = arm.first_joint_axis();
+  ASSERT_TRUE(axis) << name;
+  EXPECT_NEAR(std::abs(axis->direction_base.dot(direction.normalized())), 1.0, 1e-12) << name;
+  EXPECT_LT((axis->point_base - point).cross(direction.normalized()).norm(), 1e-9) << name << ": point off the axis";
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 500; ++trial) {
+    Eigen::VectorXd q = arm.random_configuration(rng);
+    const Eigen::Isometry3d T = arm.fk(q);
+    const double q0 = q[0];
+    q[0] = 0.0;
+    const Eigen::Isometry3d turned = axis->turn(arm.fk(q), q0);
+    EXPECT_LT((turned.translation() - T.translation()).norm(), 1e-12) << name << " trial " << trial;
+    EXPECT_LT((turned.linear() - T.linear()).norm(), 1e-12) << name << " trial " << trial;
+  }
+}
+
+TEST(Arm, EveryPoseIsATurnOfTheFirstJoint) {
+  expect_first_joint_turns(fvx_arm(), {0, 0, 0.30}, {0, 0, 1}, "fvx arm");
+  EXPECT_NEAR(fvx_arm().first_joint_axis()->tilt_from_vertical_rad(), 0.0, 1e-12);
+  // A fixed joint before the first one moves and tilts its line: y turned by 90° about x is z.
+  const char* tilted = R"(<robot name="t">
+    <link name="base"/><link name="mount"/><link name="l1"/><link name="l2"/>
+    <joint name="m" type="fixed"><parent link="base"/><child link="mount"/><origin xyz="0.1 0 0.2" rpy="1.5707963267948966 0 0"/></joint>
+    <joint name="j1" type="revolute"><parent link="mount"/><child link="l1"/><origin xyz="0 0.05 0"/><axis xyz="0 1 0"/>
+      <limit lower="-1" upper="2" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/><origin xyz="0.3 0 0.1"/><axis xyz="1 0 0"/></joint>
+  </robot>)";
+  const Arm arm = Arm::from_urdf_string(tilted, {"base", "l2"}, "tilted");
+  expect_first_joint_turns(arm, {0.1, 0, 0.25}, {0, 0, 1}, "mounted arm");
+  // A prismatic first joint has no axis to turn about.
+  const char* sliding = R"(<robot name="s">
+    <link name="base"/><link name="l1"/><link name="l2"/>
+    <joint name="j1" type="prismatic"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+      <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="continuous"><parent link="l1"/><child link="l2"/><origin xyz="0.3 0 0"/><axis xyz="0 0 1"/></joint>
+  </robot>)";
+  EXPECT_FALSE(Arm::from_urdf_string(sliding, {"base", "l2"}, "sliding").first_joint_axis());
+}
+
+TEST(ArmRealData, EveryPoseOfYoubotAndSo101IsATurnOfTheFirstJoint) {
+  FVX_REAL_DATA_OR_SKIP(youbot, "arms/youbot_arm.urdf");
+  FVX_REAL_DATA_OR_SKIP(so101, "arms/so101_arm.urdf");
+  // arm_joint_1 at (0.024, 0, 0.096) about −z; shoulder_pan at (0.0388, 0, 0.0624) about z
+  // rolled by the URDF's 3.14159 (not π): tilted 2.65 µrad from the vertical.
+  expect_first_joint_turns(Arm::from_urdf(youbot, {"base_link", "arm_link_5"}), {0.024, 0, 0.096}, {0, 0, -1}, "youbot");
+  const Arm so101_arm = Arm::from_urdf(so101, {"base_link", "gripper_frame_link"});
+  expect_first_joint_turns(so101_arm, {0.0388353, -8.97657e-09, 0.0624}, {0, std::sin(M_PI - 3.14159), -std::cos(M_PI - 3.14159)},
+                           "so101");
+  EXPECT_NEAR(so101_arm.first_joint_axis()->tilt_from_vertical_rad(), M_PI - 3.14159, 1e-9);
+}
+
 /// FK of random configurations → their viewing pose → IK from random starts.
 void expect_round_trips(const Arm& arm, const char* name) {
   std::mt19937_64 rng(11);

@@ -226,6 +226,36 @@ TEST(EvaluateCapabilityMap, WitnessMapsOfTheFvxArmAreConfirmedAndFindFkPoses) {
   EXPECT_LE(e.recall.low(), e.recall.value());
 }
 
+/// Building through the first joint's turn (one FK per group of witnesses, turned) sets the
+/// same bits as one FK per witness: the map decoded from either is the same, byte for byte.
+void expect_turned_build_equals_fk_per_witness(const Arm& arm, double voxel_m, const char* name) {
+  const test::TempDir dir;
+  BuildConfig config;
+  config.voxel_m = voxel_m;
+  BuildStats turned, each;
+  build_capability_map(arm, config, &turned).save(dir / "turned.fcm");
+  config.use_first_joint_turn = false;
+  build_capability_map(arm, config, &each).save(dir / "each.fcm");
+  std::printf("%s, %.0f cm: %zu witnesses from %zu FK (turned) and %zu FK, %zu bits\n", name, voxel_m * 100,
+              turned.fk_samples, turned.fk_evaluations, each.fk_evaluations, turned.reached);
+  EXPECT_GT(turned.reached, 1000u) << name;
+  EXPECT_EQ(turned.fk_samples, each.fk_samples) << name;
+  EXPECT_EQ(turned.fk_evaluations * std::size_t(config.turns_per_fk), turned.fk_samples) << name;
+  EXPECT_EQ(each.fk_evaluations, each.fk_samples) << name;
+  EXPECT_TRUE(bytes_of(dir / "turned.fcm") == bytes_of(dir / "each.fcm")) << name << ": the turned build differs";
+}
+
+TEST(BuildCapabilityMap, TheFvxArmsMapBuiltThroughItsFirstJointEqualsOneFkPerWitness) {
+  expect_turned_build_equals_fk_per_witness(fvx_arm(), 0.1, "fvx arm");
+}
+
+TEST(BuildCapabilityMapRealData, YoubotAndSo101MapsBuiltThroughTheFirstJointEqualOneFkPerWitness) {
+  FVX_REAL_DATA_OR_SKIP(youbot, "arms/youbot_arm.urdf");
+  FVX_REAL_DATA_OR_SKIP(so101, "arms/so101_arm.urdf");
+  expect_turned_build_equals_fk_per_witness(Arm::from_urdf(youbot, {"base_link", "arm_link_5"}), 0.05, "youBot");
+  expect_turned_build_equals_fk_per_witness(Arm::from_urdf(so101, {"base_link", "gripper_frame_link"}), 0.05, "SO-101");
+}
+
 /// The bar for an fk-witness build (5 cm, 200 directions, seed 1): recall ≥ 0.9 at
 /// precision ≥ 0.99, each measured by `fvx capmap eval` with 4000 queries (a 95 % interval
 /// within ±0.01 at these shares; checked, not assumed).
