@@ -21,7 +21,7 @@ struct Arm::Impl {
   KDL::Chain chain;
   std::vector<std::string> joint_names;
   Eigen::VectorXd lower, upper;
-  std::string urdf_hash;
+  std::string urdf_hash, urdf_hash_short_basis;
   std::optional<FirstJointAxis> first_joint_axis;
   // KDL is not safe to share between threads: its solvers keep scratch state and
   // KDL::Joint caches its last pose in mutable members. fk() and jacobian() work on a copy
@@ -45,8 +45,10 @@ Eigen::Isometry3d to_eigen(const KDL::Frame& f) {
   return T;
 }
 
-std::string fnv1a_hex(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
+/// FNV-1a 64 of `text`, hex. `basis`: the standard offset basis, or the one a digit short that
+/// maps written before it hold as their URDF hash.
+std::string fnv1a_hex(const std::string& text, std::uint64_t basis = 14695981039346656037ull) {
+  std::uint64_t h = basis;
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   char out[17];
   std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
@@ -109,6 +111,9 @@ Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, cons
     const auto parent = link->getParent();
     if (!parent || !link->parent_joint)
       throw UsageError("--tip " + config.tip_link + " is not below --base " + config.base_link + " in " + source);
+    // A link with two parent joints can close a loop that urdfdom accepts: the walk would not end.
+    if (joints.size() >= model->links_.size())
+      throw FileError(source, "the links above " + config.tip_link + " form a cycle (a link with two parent joints)");
     joints.insert(joints.begin(), link->parent_joint);
     link = parent;
   }
@@ -116,6 +121,7 @@ Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, cons
   auto impl = std::make_unique<Impl>();
   impl->config = config;
   impl->urdf_hash = fnv1a_hex(urdf);
+  impl->urdf_hash_short_basis = fnv1a_hex(urdf, 1469598103934665603ull);
   std::vector<double> lower, upper;
   for (const auto& j : joints) {
     const KDL::Frame origin = to_kdl(j->parent_to_joint_origin_transform);
@@ -164,6 +170,9 @@ const Eigen::VectorXd& Arm::lower_rad() const { return impl_->lower; }
 const Eigen::VectorXd& Arm::upper_rad() const { return impl_->upper; }
 const ArmConfig& Arm::config() const { return impl_->config; }
 const std::string& Arm::urdf_hash() const { return impl_->urdf_hash; }
+bool Arm::is_urdf_hash(const std::string& hash) const {
+  return hash == impl_->urdf_hash || hash == impl_->urdf_hash_short_basis;
+}
 const std::optional<FirstJointAxis>& Arm::first_joint_axis() const { return impl_->first_joint_axis; }
 
 Eigen::Isometry3d Arm::fk(const Eigen::VectorXd& q) const {

@@ -169,7 +169,7 @@ int eval(const Args& args, Json& report) {
   const auto& h = map.header();
   const capmap::Arm arm = capmap::Arm::from_urdf(args.positional[2], capmap::arm_config_of(h));
   std::vector<std::string> warnings;
-  if (arm.urdf_hash() != h.urdf_hash) warnings.push_back("the URDF differs from the one the map was built from");
+  if (!arm.is_urdf_hash(h.urdf_hash)) warnings.push_back("the URDF differs from the one the map was built from");
   const int samples = int(args.integer("samples", kEvalSamples));
   const auto seed = std::uint64_t(args.integer("seed", (long long)kBuild.seed));
   const capmap::Evaluation e = capmap::evaluate(map, arm, samples, seed);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/output_check.hpp"
 #include "fvx/core/pose.hpp"
 
 namespace fvx::cli {
@@ -112,6 +113,7 @@ int run(int argc, char** argv) {
     std::fputs(help_text(command->spec).c_str(), stdout);
     return 0;
   }
+  check_outputs(command->spec, args);  // before any work: nothing is replaced and then lost
   return command->run(args);
 }
 

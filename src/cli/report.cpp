@@ -2,18 +2,22 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "fvx/core/atomic_file.hpp"
+#include "fvx/core/error.hpp"
 
 namespace fvx::cli {
 
 void write_report(const Json& report, const std::string& path) {
   const std::string text = report_text(report);
   if (path.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
+    // A report that does not reach standard output (a full disk, a closed pipe) is a failure.
+    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+      throw Error(std::string("cannot write the report to standard output: ") + std::strerror(errno));
     return;
   }
   write_file_atomically(path, [&](std::ostream& out) { out << text; });

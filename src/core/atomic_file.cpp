@@ -81,6 +81,8 @@ void require_readable_file(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw FileError(path, "no such file");
   if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, expected a file");
+  // A pipe would block the open until a writer comes, a device (/dev/zero) never ends.
+  if (!fs::is_regular_file(path, ec)) throw FileError(path, "is not a regular file (a pipe, device or socket)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
 }

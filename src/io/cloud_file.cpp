@@ -11,6 +11,7 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/io/cloud_header.hpp"
 
 namespace fvx::io {
 namespace {
@@ -35,6 +36,7 @@ CloudFile read_cloud(const std::string& path) {
   int result = -1;
   try {
     if (ext == ".pcd") {
+      check_pcd_header(path);  // before PCL allocates what the header claims
       int version = 0, data_type = 0;
       unsigned data_index = 0;
       pcl::PCDReader reader;
@@ -44,6 +46,7 @@ CloudFile read_cloud(const std::string& path) {
         throw FileError(path, "corrupt PCD header (no FIELDS, or a malformed line)");
       result = reader.read(path, blob, origin, orientation, version);
     } else if (ext == ".ply") {
+      check_ply_header(path);
       int version = 0;
       pcl::PLYReader reader;
       result = reader.read(path, blob, origin, orientation, version);
@@ -61,9 +64,9 @@ CloudFile read_cloud(const std::string& path) {
     throw FileError(path, "truncated point data: header promises " + std::to_string(expected) +
                               " points");
 
-  pcl::PointCloud<pcl::PointXYZ> xyz;
-  pcl::fromPCLPointCloud2(blob, xyz);
   CloudFile file;
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  if (expected > 0) pcl::fromPCLPointCloud2(blob, xyz);  // with no points PCL binds a reference to null data
   file.width = static_cast<int>(xyz.width);
   file.height = static_cast<int>(xyz.height);
   file.points.reserve(xyz.size());

@@ -92,7 +92,7 @@ bool mark_ray_cells(const octomap::OcTree& tree, const octomap::point3d& origin,
   double t_max[3], t_delta[3];
   for (unsigned i = 0; i < 3; ++i) {
     const int step = direction(i) > 0.0 ? 1 : (direction(i) < 0.0 ? -1 : 0);
-    packed_step[i] = std::int64_t(step) << (16 * i);
+    packed_step[i] = std::int64_t(step) * (std::int64_t(1) << (16 * i));  // step < 0: no left shift of a negative (UB in C++17)
     index_step[i] = step * stride[i];
     if (step != 0) {
       double voxel_border = tree.keyToCoord(key_origin[i]);

@@ -15,7 +15,7 @@ void load_arm(const std::string& capmap_path, const std::string& urdf_path, cons
                      std::to_string(h.shard_count) + "; merge the shards first (fvx capmap merge)");
   if (!urdf_path.empty()) {
     out.arm = capmap::Arm::from_urdf(urdf_path, capmap::arm_config_of(h));
-    if (out.arm->urdf_hash() != h.urdf_hash)
+    if (!out.arm->is_urdf_hash(h.urdf_hash))
       throw Error(command + ": " + capmap_path + " was built from another URDF than " + urdf_path + " (hash " +
                   h.urdf_hash + " vs " + out.arm->urdf_hash() + "); rebuild it with fvx capmap build");
   }

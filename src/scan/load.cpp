@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/io/cloud_file.hpp"
 #include "fvx/io/depth_image.hpp"
@@ -165,6 +166,7 @@ namespace {
 
 /// Per line of a TUM associations file, the depth image it names (relative to the folder).
 std::vector<std::string> associated_depth_images(const std::string& associations) {
+  require_readable_file(associations);
   std::ifstream in(associations);
   if (!in) throw FileError(associations, "cannot open the associations file");
   std::vector<std::string> names;

@@ -153,6 +153,7 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
 
 Manifest read_manifest(const std::string& dir) {
   const std::string file = (std::filesystem::path(dir) / "manifest.json").string();
+  if (std::filesystem::exists(file)) require_readable_file(file);
   std::ifstream in(file);
   if (!in) throw FileError(file, "cannot open the session manifest (is " + dir + " a session directory?)");
   Json j;

@@ -195,7 +195,7 @@ TEST(CliExplore, BadInputIsRefusedBeforeASessionIsWritten) {
   const RunResult blocked = run_fvx(dir, "explore" + kScene + arm() + " --max-views 1 -o full/keep.txt/session");
   EXPECT_EQ(blocked.status, 1) << blocked.err;
   EXPECT_EQ(line_count(blocked.err), 1u) << blocked.err;
-  EXPECT_NE(blocked.err.find("keep.txt/session/scans: cannot create the folder"), std::string::npos) << blocked.err;
+  EXPECT_NE(blocked.err.find("keep.txt/session: cannot write: 'full/keep.txt' is not a folder"), std::string::npos) << blocked.err;
   EXPECT_EQ(slurp(dir / "full/keep.txt"), "mine\n");
 }
 

@@ -55,8 +55,12 @@ class Arm {
   const Eigen::VectorXd& lower_rad() const;  ///< joint limits (continuous joints: −π)
   const Eigen::VectorXd& upper_rad() const;  ///< (continuous joints: +π)
   const ArmConfig& config() const;
-  /// FNV-1a hash of the URDF text, hex: ties capability maps to the model they came from.
+  /// FNV-1a 64 hash of the URDF text (standard offset basis), hex: ties capability maps to
+  /// the model they came from.
   const std::string& urdf_hash() const;
+  /// Is `hash` this URDF's hash — urdf_hash(), or the hash with the offset basis a digit short
+  /// (14695981039346656037 without its 7) that maps built before fvx used the standard one hold?
+  bool is_urdf_hash(const std::string& hash) const;
 
   /// The axis of joint 0, when it is revolute (not prismatic).
   const std::optional<FirstJointAxis>& first_joint_axis() const;

@@ -24,7 +24,8 @@ struct CloudFile {
   bool organised() const { return height > 1; }
 };
 
-/// Reads a .pcd or .ply file. Throws FileError for a missing file, a corrupt header or data,
+/// Reads a .pcd or .ply file. Throws FileError for a missing file, a header that lies about
+/// its data (check_pcd_header, check_ply_header: before anything is allocated), corrupt data,
 /// a file without x/y/z fields, or an unknown extension.
 CloudFile read_cloud(const std::string& path);
 

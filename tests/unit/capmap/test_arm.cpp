@@ -168,6 +168,23 @@ TEST(ViewingIk, OneStepAlongABitRegionsErrorsLandsInTheBit) {
   EXPECT_GT(outside, 2900);
 }
 
+/// FNV-1a 64 of `text` from `basis`, hex: the rule fvx-capmap(5) names.
+std::string fnv1a(const std::string& text, std::uint64_t basis) {
+  for (unsigned char c : text) basis = (basis ^ c) * 1099511628211ull;
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(basis));
+  return out;
+}
+
+TEST(Arm, TheUrdfHashIsFnv1aWithTheStandardBasisAndTheOldOneStillMatches) {
+  const Arm arm = fvx_arm();
+  const std::string text = test::slurp(fvx_arm_path());
+  EXPECT_EQ(arm.urdf_hash(), fnv1a(text, 14695981039346656037ull));
+  EXPECT_TRUE(arm.is_urdf_hash(arm.urdf_hash()));
+  EXPECT_TRUE(arm.is_urdf_hash(fnv1a(text, 1469598103934665603ull)));  // maps written before
+  EXPECT_FALSE(arm.is_urdf_hash(fnv1a(text + " ", 14695981039346656037ull)));
+}
+
 TEST(Arm, BadModelsAreRefused) {
   const test::TempDir dir;
   std::ofstream(dir / "broken.urdf") << "<robot name='x'><link name='a'/><joint name='j'";

@@ -1,0 +1,142 @@
+// The bad-input probe's defects (issue 19), each fed through the binary: exit code, one line
+// on stderr, and no output created, replaced or truncated.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <utility>
+#include <vector>
+
+#include "cli_support.hpp"
+
+namespace fvx::test {
+namespace {
+
+std::string sample_scan(int view) {
+  return std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/sample/box-room/view" + std::to_string(view) + ".pcd";
+}
+
+/// A small map of the bundled sample, m.bt in `dir`.
+void make_map(const TempDir& dir) {
+  const RunResult r = run_fvx(dir, "integrate " + sample_scan(0) + " -o m.bt");
+  ASSERT_EQ(r.status, 0) << r.err;
+}
+
+void expect_one_line(const RunResult& r, int status, const std::string& words) {
+  EXPECT_EQ(r.status, status) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+}
+
+TEST(Hardening, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
+  const TempDir dir;
+  make_map(dir);
+  const std::string map = slurp(dir / "m.bt");
+  expect_one_line(run_fvx(dir, "voids m.bt -o m.bt"), 2, "--output m.bt is also an input");
+  expect_one_line(run_fvx(dir, "voids m.bt -o ./m.bt"), 2, "is also an input");
+  std::filesystem::create_symlink("m.bt", dir / "link.bt");
+  expect_one_line(run_fvx(dir, "voids link.bt -o m.bt"), 2, "is also an input");
+  expect_one_line(run_fvx(dir, "integrate " + sample_scan(1) + " --map m.bt -o m.bt"), 2, "is also an input");
+  expect_one_line(run_fvx(dir, "voids m.bt --cloud a.ply --picture a.ply"), 2, "name the same file a.ply");
+  EXPECT_TRUE(slurp(dir / "m.bt") == map) << "the input map changed";
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
+}
+
+TEST(Hardening, EveryOutputIsCheckedBeforeAnyIsWritten) {
+  const TempDir dir;
+  std::ofstream(dir / "out.bt") << "keep";
+  expect_one_line(run_fvx(dir, "integrate " + sample_scan(0) + " -o out.bt --report nope/r.json"), 1,
+                  "folder 'nope' does not exist");
+  EXPECT_EQ(slurp(dir / "out.bt"), "keep");
+  expect_one_line(run_fvx(dir, "integrate " + sample_scan(0) + " -o new.bt --report out.bt/r.json"), 1,
+                  "is not a folder");
+  EXPECT_FALSE(std::filesystem::exists(dir / "new.bt"));
+}
+
+TEST(Hardening, AReportThatCannotBeWrittenIsAFailure) {
+  const TempDir dir;
+  make_map(dir);
+  const std::string capmap_info = "capmap info " + std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.fcm";
+  for (const std::string& command : {std::string("voids m.bt"), std::string("frontiers m.bt"), capmap_info}) {
+    const std::string line = "cd '" + dir.path().string() + "' && '" FVX_BINARY "' " + command + " > /dev/full 2> err.txt";
+    const int raw = std::system(line.c_str());
+    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1) << command;
+    EXPECT_NE(slurp(dir / "err.txt").find("cannot write the report to standard output"), std::string::npos) << command;
+  }
+}
+
+TEST(Hardening, PipesAndDevicesAreNotReadAsFiles) {
+  const TempDir dir;
+  ASSERT_EQ(::mkfifo((dir / "pipe.bt").c_str(), 0600), 0);
+  // Without the check, opening the pipe waits for a writer forever: `timeout` turns that into 124.
+  expect_one_line(run_fvx(dir, "voids pipe.bt", "timeout 60"), 1, "pipe.bt: is not a regular file");
+  expect_one_line(run_fvx(dir, "capmap info /dev/zero", "timeout 60"), 1, "/dev/zero: is not a regular file");
+  expect_one_line(run_fvx(dir, "integrate " + sample_scan(0) + " --trajectory /dev/zero -o m.bt", "timeout 60"), 1,
+                  "/dev/zero: is not a regular file");
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.bt"));
+}
+
+TEST(Hardening, AUrdfWhoseLinksFormACycleIsRefused) {
+  const TempDir dir;
+  std::ofstream(dir / "cycle.urdf") << R"(<robot name="c"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 1 0"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j3" type="revolute"><parent link="c"/><child link="b"/><axis xyz="0 1 0"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>)";
+  expect_one_line(run_fvx(dir, "capmap build cycle.urdf --base a --tip c -o c.fcm", "timeout 60"), 1,
+                  "the links above c form a cycle");
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.fcm"));
+}
+
+/// A PCD header with these SIZE, WIDTH (= POINTS), VIEWPOINT and DATA lines, then `data`.
+std::string pcd(const std::string& size, const std::string& width, const std::string& viewpoint,
+                const std::string& encoding, const std::string& data) {
+  return "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE " + size + "\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + width +
+         "\nHEIGHT 1\nVIEWPOINT " + viewpoint + "\nPOINTS " + width + "\nDATA " + encoding + "\n" + data;
+}
+
+// Each lying or malformed cloud header: one line naming the field, exit 1, no map written,
+// in well under the seconds and gigabytes the probe saw (a 60 s timeout would turn a hang
+// into 124).
+TEST(Hardening, CloudHeadersThatLieAreRefusedBeforeAnythingIsAllocated) {
+  const TempDir dir;
+  const std::string identity = "0 0 0 1 0 0 0";
+  const std::string binary_sizes("\x10\x00\x00\x00\xf0\xff\xff\xff" "0123456789abcdef", 24);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {pcd("4 4 4", "-5", identity, "ascii", "1 2 3\n"), "WIDTH '-5' is not a count"},
+      {pcd("4 4 4", "2000000000", identity, "ascii", "1 2 3\n"), "POINTS 2000000000 is more than the ascii data can hold"},
+      {pcd("4 4 4", "2000000000", identity, "binary", "0123456789ab"), "truncated point data: header promises 2000000000"},
+      {pcd("4 4 4", "100", identity, "binary_compressed", binary_sizes), "binary_compressed block unpacks to 4294967280"},
+      {pcd("4 4 4", "3", identity, "ascii", "a b c\nx y z\n1 2 3\n"), "data line 1: 'a' is not a number"},
+      {pcd("4 4 4", "2", identity, "ascii", "1 2 3\n4 5\n"), "data line 2 has 2 values"},
+      {pcd("4 4 4", "1", "nan 0 0 1 0 0 0", "ascii", "1 2 3\n"), "VIEWPOINT ' nan 0 0 1 0 0 0' is not seven finite"},
+      {pcd("2 2 2", "1", identity, "ascii", "1 2 3\n"), "field x: TYPE F with SIZE 2 is not a PCD type"},
+      {pcd("4 4 4", "0", identity, "binary", ""), "the scan holds no points"},
+      {"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+       "property float z\nend_header\n", "element vertex '4000000000' is not a count"},
+      {"ply\nformat ascii 1.0\nelement vertex -3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+       "1 2 3\n", "element vertex '-3' is not a count"},
+      {"ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nproperty float y\n"
+       "property float z\nend_header\n0123", "truncated PLY data"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string name = "c" + std::to_string(i) + (cases[i].first.rfind("ply", 0) == 0 ? ".ply" : ".pcd");
+    std::ofstream(dir / name, std::ios::binary) << cases[i].first;
+    expect_one_line(run_fvx(dir, "integrate " + name + " -o m.bt", "timeout 60"), 1, name + ": " + cases[i].second);
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.bt")) << name;
+  }
+  // The same headers telling the truth are read.
+  std::ofstream(dir / "ok.pcd") << pcd("4 4 4", "3", identity, "ascii", "1 2 3\nnan nan nan\n1 2 3.5\n");
+  std::ofstream(dir / "ok.ply") << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                                   "property float z\nend_header\n1 2 3\n4 5 6\n";
+  for (const char* ok : {"ok.pcd", "ok.ply"}) {
+    const RunResult r = run_fvx(dir, std::string("integrate ") + ok + " -o ok.bt");
+    EXPECT_EQ(r.status, 0) << ok << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace fvx::test
