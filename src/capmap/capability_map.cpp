@@ -234,6 +234,24 @@ void CapabilityMap::save(const std::string& path) const {
   write_file_atomically(path, [&](std::ostream& s) { s.write(out.data(), std::streamsize(out.size())); });
 }
 
+namespace {
+
+/// The header's numbers within what fvx builds, before anything is sized by them: a lying
+/// header (2e9 directions, dims whose product overflows) must not allocate or overflow.
+void check_header_values(const CapabilityHeader& h, const std::string& path) {
+  const auto bad = [&](const std::string& what) { throw FileError(path, "bad capability-map header: " + what); };
+  if (!(h.voxel_m > 0) || !std::isfinite(h.voxel_m) || !h.origin_m.allFinite()) bad("voxel_m or origin_m is not a finite size");
+  if (h.directions < 1 || h.directions > 4096) bad("directions " + std::to_string(h.directions) + ", expected 1 to 4096");
+  for (const std::uint32_t d : h.dims)
+    if (d < 1 || d > (1u << 20)) bad("dims " + std::to_string(d) + ", expected 1 to 2^20 voxels per axis");
+  if (double(h.dims[0]) * h.dims[1] * h.dims[2] > double(std::int64_t(1) << 40)) bad("dims hold more than 2^40 voxels");
+  if (!(h.position_tolerance_m > 0) || !(h.angle_tolerance_rad >= 0 && h.angle_tolerance_rad < M_PI))
+    bad("a tolerance out of range");
+  if (h.shard_count < 1 || h.shard_index >= h.shard_count) bad("shard_index is not below shard_count");
+}
+
+}  // namespace
+
 CapabilityMap CapabilityMap::load(const std::string& path) {
   require_readable_file(path);
   std::ifstream in(path, std::ios::binary);
@@ -277,8 +295,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw FileError(path, std::string("bad capability-map header: ") + e.what());
   }
-  if (!(h.voxel_m > 0) || h.directions < 1 || h.shard_count < 1 || h.shard_index >= h.shard_count)
-    throw FileError(path, "bad capability-map header values");
+  check_header_values(h, path);
   if (h.method != "fk-witness" && h.method != "fk-seeded-ik" && h.method != "exhaustive-ik")
     throw FileError(path, "unknown bit definition '" + h.method + "' (method); this fvx reads fk-witness, "
                           "fk-seeded-ik and exhaustive-ik maps");

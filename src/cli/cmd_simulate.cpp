@@ -1,6 +1,7 @@
 // fvx simulate — a scene mesh and sensor poses → the scans a Kinect would record there
 // (PCD with VIEWPOINT, or depth PNGs with a trajectory), and the scene's voxel ground truth.
 #include <filesystem>
+#include <optional>
 
 #include "command_table.hpp"
 #include "fvx/core/atomic_file.hpp"  // lowercase_extension
@@ -125,6 +126,9 @@ int run_simulate(const Args& args) {
                       {"vertices", scene.mesh.vertices.size()}};
   std::vector<std::string> warnings;
 
+  std::optional<sim::GroundTruth> gt;  // first: a search space it cannot hold fails before any scan is written
+  const auto region = args.has("ground-truth") ? sim::ground_truth_region(scene, parse_bounds(args)) : Eigen::AlignedBox3d();
+  if (args.has("ground-truth")) gt.emplace(scene.mesh, *caster, resolution_m, region);
   Progress progress(args.has("progress"));
   const std::vector<sim::RecordedFrame> frames =
       sim::record_frames(*caster, poses, sensor, output, to_folder, format, warnings, [&](std::size_t i) {
@@ -132,11 +136,9 @@ int run_simulate(const Args& args) {
       });
   progress.finish();
   report["results"]["frames"] = frames_json(frames);
-  if (args.has("ground-truth")) {
-    const Eigen::AlignedBox3d region = sim::ground_truth_region(scene, parse_bounds(args));
-    const sim::GroundTruth gt(scene.mesh, *caster, resolution_m, region);
-    gt.to_map().save(args.get("ground-truth"));
-    report["results"]["ground_truth"] = ground_truth_json(gt, args.get("ground-truth"), region, scene);
+  if (gt) {
+    gt->to_map().save(args.get("ground-truth"));
+    report["results"]["ground_truth"] = ground_truth_json(*gt, args.get("ground-truth"), region, scene);
   }
   report["warnings"] = warnings;
   write_report(report, args.has("report") ? args.get("report") : "");

@@ -1,4 +1,5 @@
 // The session directory's manifest (man/fvx-session.5).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +40,18 @@ struct Reader {
     if (!v.is_number()) fail("'" + std::string(key) + "' must be a number");
     return v.get<double>();
   }
+  /// A whole number in [min, max]: a float such as 1e30 is refused, not converted.
+  long long integer(const Json& j, const char* key, long long min, long long max) const {
+    const double v = number(j, key);
+    if (!(v == std::floor(v) && v >= double(min) && v <= double(max)))
+      fail("'" + std::string(key) + "' must be a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return (long long)v;
+  }
+  bool flag(const Json& j, const char* key) const {
+    const Json& v = at(j, key);
+    if (!v.is_boolean()) fail("'" + std::string(key) + "' must be true or false");
+    return v.get<bool>();
+  }
   std::string text(const Json& j, const char* key) const {
     const Json& v = at(j, key);
     if (!v.is_string()) fail("'" + std::string(key) + "' must be a string");
@@ -53,7 +66,9 @@ struct Reader {
     if (!j.is_object()) fail("'" + what + "' must be a pose object");
     const Eigen::Vector3d t = vec3(at(j, "position_m"), what + ".position_m");
     const Json& q = at(j, "quaternion_xyzw");
-    if (!q.is_array() || q.size() != 4) fail("'" + what + ".quaternion_xyzw' must be 4 numbers");
+    if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
+        !q[3].is_number())
+      fail("'" + what + ".quaternion_xyzw' must be 4 numbers");
     Eigen::Quaterniond quat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
     if (!(std::abs(quat.norm() - 1.0) < 1e-3)) fail("'" + what + ".quaternion_xyzw' is not a unit quaternion");
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -151,20 +166,12 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
 
 }  // namespace
 
-Manifest read_manifest(const std::string& dir) {
-  const std::string file = (std::filesystem::path(dir) / "manifest.json").string();
-  if (std::filesystem::exists(file)) require_readable_file(file);
-  std::ifstream in(file);
-  if (!in) throw FileError(file, "cannot open the session manifest (is " + dir + " a session directory?)");
-  Json j;
-  try {
-    j = Json::parse(in);
-  } catch (const std::exception& e) {
-    throw FileError(file, std::string("not valid JSON: ") + e.what());
-  }
-  const Reader r{file};
+namespace {
+
+/// The manifest's keys, each checked for its type and range (Reader names the key).
+Manifest manifest_from_json(const Json& j, const Reader& r) {
   Manifest m;
-  m.schema_version = int(r.number(j, "schema_version"));
+  m.schema_version = int(r.integer(j, "schema_version", 0, 1 << 30));
   if (m.schema_version != kSchemaVersion)
     r.fail("schema_version " + std::to_string(m.schema_version) + " is not one this fvx reads (" +
            std::to_string(kSchemaVersion) + ")");
@@ -181,16 +188,17 @@ Manifest read_manifest(const std::string& dir) {
   m.capmap_urdf_hash = r.at(j, "capmap_urdf_hash").is_null() ? "" : r.text(j, "capmap_urdf_hash");
   // "planner": its name in sessions written before every command called it the strategy.
   m.strategy = r.text(j, j.contains("strategy") || !j.contains("planner") ? "strategy" : "planner");
-  m.seed = r.at(j, "seed").get<std::uint64_t>();
+  if (!r.at(j, "seed").is_number_unsigned()) r.fail("'seed' must be a whole number >= 0");
+  m.seed = j["seed"].get<std::uint64_t>();
   m.pose_noise_m = r.number(r.at(j, "pose_noise"), "sigma_m");
   m.pose_noise_deg = r.number(r.at(j, "pose_noise"), "sigma_deg");
-  m.registration = r.at(j, "registration").get<bool>();
+  m.registration = r.flag(j, "registration");
   read_search_model(j, r, m);
   const Json& views = r.at(j, "views");
   if (!views.is_array()) r.fail("'views' must be an array");
   for (const Json& jv : views) {
     ManifestView v;
-    v.view = int(r.number(jv, "view"));
+    v.view = int(r.integer(jv, "view", 0, 1 << 30));
     if (v.view != int(m.views.size()))
       r.fail("view " + std::to_string(v.view) + " is out of order (expected " + std::to_string(m.views.size()) + ")");
     v.scan = r.text(jv, "scan");
@@ -200,12 +208,36 @@ Manifest read_manifest(const std::string& dir) {
     v.T_world_sensor_prior = r.pose(r.at(jv, "T_world_sensor"), "T_world_sensor");
     if (!r.at(jv, "T_world_sensor_true").is_null()) v.T_world_sensor_true = r.pose(jv["T_world_sensor_true"], "T_world_sensor_true");
     if (!r.at(jv, "joints_rad").is_null()) {
-      const auto q = jv["joints_rad"].get<std::vector<double>>();
+      const Json& joints = jv["joints_rad"];
+      if (!joints.is_array() || !std::all_of(joints.begin(), joints.end(), [](const Json& x) { return x.is_number(); }))
+        r.fail("'joints_rad' must be an array of numbers or null");
+      const auto q = joints.get<std::vector<double>>();
       v.joints_rad = Eigen::Map<const Eigen::VectorXd>(q.data(), Eigen::Index(q.size()));
     }
     m.views.push_back(std::move(v));
   }
   return m;
+}
+
+}  // namespace
+
+Manifest read_manifest(const std::string& dir) {
+  const std::string file = (std::filesystem::path(dir) / "manifest.json").string();
+  if (std::filesystem::exists(file)) require_readable_file(file);
+  std::ifstream in(file);
+  if (!in) throw FileError(file, "cannot open the session manifest (is " + dir + " a session directory?)");
+  Json j;
+  try {
+    j = Json::parse(in);
+  } catch (const std::exception& e) {
+    throw FileError(file, std::string("not valid JSON: ") + e.what());
+  }
+  const Reader r{file};
+  try {
+    return manifest_from_json(j, r);
+  } catch (const nlohmann::json::exception& e) {  // a type no check above foresaw: still named
+    r.fail(std::string("bad manifest: ") + e.what());
+  }
 }
 
 void write_depth_camera(const std::string& path, const io::DepthCamera& c) {

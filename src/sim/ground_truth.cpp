@@ -2,16 +2,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "fvx/core/error.hpp"
 
 namespace fvx::sim {
+namespace {
+
+std::string metres_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
 
 GroundTruth::GroundTruth(const Mesh& mesh, const RayCaster& caster, double resolution_m,
                          const Eigen::AlignedBox3d& region)
     : resolution_m_(resolution_m) {
   FVX_ASSERT(resolution_m > 0.0 && !region.isEmpty(), "ground truth needs a resolution and a region");
   const double R = resolution_m;
+  // The region comes from a scene file: it must fit the map's key space (OctoMap's 16-bit keys,
+  // ±32767 cells) and a grid this class can allocate, or fvx says so instead of aborting.
+  const double reach_m = 32767.0 * R;
+  if (!(region.min().array().abs() <= reach_m).all() || !(region.max().array().abs() <= reach_m).all())
+    throw Error("the search space reaches beyond ±" + std::to_string(int(reach_m)) + " m, the most a map of " +
+                metres_text(R) + " m cells holds");
+  const Eigen::Array3d cells = (region.max() - region.min()).array() / R + 1.0;
+  if (cells.prod() >= 2e9)
+    throw Error("the search space holds " + metres_text(cells.prod()) + " cells of " + metres_text(R) +
+                " m; the ground truth holds at most 2e9");
   // Cells whose centres lie in the region: centre (k + 0.5)·R ∈ [min, max].
   first_ = ((region.min().array() / R) - 0.5).ceil().cast<int>();
   const Eigen::Vector3i last = ((region.max().array() / R) - 0.5).floor().cast<int>();

@@ -21,10 +21,16 @@ void only_keys(const json& j, const std::set<std::string>& known, const std::str
     if (!known.count(item.key())) throw FileError(path, "unknown key '" + item.key() + "' in " + where);
 }
 
+/// Scenes are rooms, not continents: ±10 km keeps every box inside what a map and a ray
+/// caster can hold (1e6 m aborted the ground truth, 1e308 Embree).
+constexpr double kSceneLimitM = 1e4;
+
 Eigen::Vector3d vec3(const json& j, const std::string& path, const std::string& where) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw FileError(path, where + " must be [x, y, z] in metres");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+  const Eigen::Vector3d v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+  if (!(v.array().abs() <= kSceneLimitM).all()) throw FileError(path, where + " must lie within ±10000 m");
+  return v;
 }
 
 Eigen::AlignedBox3d box_of(const json& j, const std::string& path, const std::string& where) {

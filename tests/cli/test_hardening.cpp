@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -135,6 +136,76 @@ TEST(Hardening, CloudHeadersThatLieAreRefusedBeforeAnythingIsAllocated) {
   for (const char* ok : {"ok.pcd", "ok.ply"}) {
     const RunResult r = run_fvx(dir, std::string("integrate ") + ok + " -o ok.bt");
     EXPECT_EQ(r.status, 0) << ok << ": " << r.err;
+  }
+}
+
+// Intrinsics files are held to the command line's limits: a width of 1e9 sized an image of
+// gigabytes, 1e30 was converted to an int unchecked.
+TEST(Hardening, IntrinsicsFilesAreHeldToTheCommandLinesLimits) {
+  const TempDir dir;
+  const std::string scene = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/scenes/crates.ply";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"fx":525,"fy":525,"cx":319.5,"cy":239.5,"width":1000000000,"height":480})", "'width' must be 1 to 16384 pixels"},
+      {R"({"fx":525,"fy":525,"cx":319.5,"cy":239.5,"width":640,"height":1e30})", "'height' must be 1 to 16384 pixels"},
+      {R"({"fx":5e9,"fy":525,"cx":319.5,"cy":239.5,"width":640,"height":480})", "fx must be a non-zero focal length"},
+  };
+  for (const auto& [json, words] : cases) {
+    std::ofstream(dir / "k.json") << json;
+    expect_one_line(run_fvx(dir, "simulate " + scene + " --look-at 0,-1.5,1,0.5,0,0.3 --intrinsics k.json -o x.pcd",
+                            "timeout 60"),
+                    1, "k.json: " + words);
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.pcd"));
+  }
+}
+
+// OctoMap's readers recurse without a depth or node limit: one flipped bit in a child mask of
+// a .ot made fvx read for 20 s into gigabytes. Maps whose node stream does not hold together
+// are refused in milliseconds, with one line.
+TEST(Hardening, OctreeFilesWhoseNodesDoNotHoldTogetherAreRefused) {
+  const TempDir dir;
+  ASSERT_EQ(run_fvx(dir, "integrate " + sample_scan(0) + " -o s.ot").status, 0);
+  ASSERT_EQ(run_fvx(dir, "integrate " + sample_scan(0) + " -o s.bt").status, 0);
+  std::string chain = "# Octomap OcTree file\nid OcTree\nsize 18\nres 0.1\ndata\n";
+  for (int depth = 0; depth < 18; ++depth) chain += std::string(4, '\0') + "\x01";  // one child each, 18 deep
+  std::ofstream(dir / "deep.ot", std::ios::binary) << chain;
+  expect_one_line(run_fvx(dir, "voids deep.ot", "timeout 60"), 1, "deep.ot: corrupt OctoMap data: a node below depth 16");
+  const std::string bt = slurp(dir / "s.bt");
+  std::ofstream(dir / "half.bt", std::ios::binary) << bt.substr(0, bt.size() / 2);
+  expect_one_line(run_fvx(dir, "voids half.bt", "timeout 60"), 1, "half.bt: truncated or corrupt OctoMap data");
+  // Single flipped bits anywhere in the node data: read or refused, never a hang or a crash.
+  const std::string ot = slurp(dir / "s.ot");
+  const std::size_t data = ot.find("data\n") + 5;
+  std::mt19937_64 rng(5);
+  int refused = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::string flipped = ot;
+    flipped[data + rng() % (ot.size() - data)] ^= char(1 << (rng() % 8));
+    std::ofstream(dir / "f.ot", std::ios::binary) << flipped;
+    const RunResult r = run_fvx(dir, "voids f.ot", "ulimit -v 4000000; timeout 60");
+    EXPECT_TRUE(r.status == 0 || (r.status == 1 && line_count(r.err) == 1)) << trial << ": " << r.status << " " << r.err;
+    refused += r.status == 1;
+  }
+  EXPECT_GT(refused, 10);
+}
+
+// A scene sidecar whose search space no map can hold aborted fvx simulate (exit 134, an
+// assertion in the ground truth or in Embree) after the scan was written. Now one line, and
+// neither the scan nor the ground truth is written.
+TEST(Hardening, ASearchSpaceNoMapCanHoldIsRefusedBeforeAnyScan) {
+  const TempDir dir;
+  const std::string scene = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/scenes/crates.ply";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[-1e6, -1e6, -1e6], \"max\": [1e6, 1e6, 1e6]", "s.json: search_space.min must lie within ±10000 m"},
+      {"[-1e308, 0, 0], \"max\": [1e308, 1, 1]", "s.json: search_space.min must lie within ±10000 m"},
+      {"[-5000, 0, 0], \"max\": [5000, 1, 1]", "the search space reaches beyond ±819 m, the most a map of 0.025 m"},
+  };
+  for (const auto& [box, words] : cases) {
+    std::ofstream(dir / "s.json") << "{\"search_space\": {\"min\": " + box + "}}";
+    expect_one_line(run_fvx(dir, "simulate " + scene + " --scene-info s.json --look-at 0,-1.5,1,0.5,0,0.3 -o x.pcd "
+                                 "--ground-truth gt.bt", "timeout 60"),
+                    1, words);
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.pcd"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "gt.bt"));
   }
 }
 

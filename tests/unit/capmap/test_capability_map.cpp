@@ -204,5 +204,45 @@ TEST(CapabilityMap, VersionOneFilesStillLoadAndUnknownVersionsAreRefused) {
   }
 }
 
+/// The file at `path` with `from` replaced by `to` in its header JSON, a valid checksum and
+/// header length: a header that lies, as a fuzzer or another writer makes it.
+std::string with_header_edit(const std::string& path, const std::string& from, const std::string& to) {
+  const std::string bytes = bytes_of(path);  // magic (8), version (4), header length (4), header, voxels, checksum (8)
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  std::string header = bytes.substr(16, length);
+  const std::string voxels = bytes.substr(16 + length, bytes.size() - 8 - 16 - length);
+  const auto at = header.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  header.replace(at, from.size(), to);
+  length = std::uint32_t(header.size());
+  const std::string body = bytes.substr(0, 12) + std::string(reinterpret_cast<const char*>(&length), 4) + header + voxels;
+  return with_version(body, 2, 14695981039346656037ull);
+}
+
+// Header numbers beyond what fvx builds are refused before anything is sized by them: 2e9
+// directions allocated gigabytes, dims whose product overflowed int64 loaded with exit 0.
+TEST(CapabilityMap, HeadersThatLieAboutTheirSizesAreRefusedBeforeAllocating) {
+  const test::TempDir dir;
+  small_map().save(dir / "good.fcm");
+  const std::string good = bytes_of(dir / "good.fcm");
+  const std::string dims = good.substr(good.find("\"dims\":"), good.find("]", good.find("\"dims\":")) - good.find("\"dims\":") + 1);
+  const std::vector<std::pair<std::string, std::string>> lies = {
+      {"\"directions\":200", "\"directions\":2000000000"},
+      {dims, "\"dims\":[4000000000,4000000000,4000000000]"},
+      {dims, "\"dims\":[1048576,1048576,1048576]"},
+      {"\"voxel_m\":", "\"voxel_m\":-"},
+  };
+  for (const auto& [from, to] : lies) {
+    std::ofstream(dir / "lie.fcm", std::ios::binary) << with_header_edit(dir / "good.fcm", from, to);
+    try {
+      CapabilityMap::load(dir / "lie.fcm");
+      ADD_FAILURE() << to << " was accepted";
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad capability-map header"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fvx::capmap

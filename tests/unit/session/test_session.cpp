@@ -2,6 +2,8 @@
 // read; explore is deterministic, moves the sensor, and stops when no view sees a void.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <filesystem>
 #include <fstream>
 
@@ -109,6 +111,41 @@ TEST(Session, ABadManifestNamesTheProblem) {
   }
   std::ofstream(file) << "{\"schema_version\": 1";
   EXPECT_THROW(read_manifest(dir.path().string()), FileError);
+}
+
+// Wrong JSON types and numbers no int holds are named with their key, never "unexpected
+// error: [json.exception.type_error.302]" or a schema_version of -2147483648.
+TEST(Session, WrongTypesAndHugeNumbersInAManifestNameTheirKey) {
+  const test::TempDir dir;
+  Manifest m;
+  m.created_by = "test";
+  ManifestView v;
+  v.joints_rad = Eigen::VectorXd::Zero(2);
+  m.views.push_back(v);
+  write_manifest(dir.path().string(), m);
+  const std::string file = (dir.path() / "manifest.json").string();
+  const std::string good = test::slurp(file);
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"\"schema_version\": 1", "\"schema_version\": 1e30", "'schema_version' must be a whole number"},
+      {"\"seed\": 1", "\"seed\": \"one\"", "'seed' must be a whole number >= 0"},
+      {"\"registration\": false", "\"registration\": 0", "'registration' must be true or false"},
+      {"\"view\": 0", "\"view\": 2.5", "'view' must be a whole number"},
+      {"\"joints_rad\": [", "\"joints_rad\": [\"a\", ", "'joints_rad' must be an array of numbers"},
+      {"\"quaternion_xyzw\": [", "\"quaternion_xyzw\": [\"x\", ", "quaternion_xyzw' must be 4 numbers"},
+  };
+  for (const auto& [from, to, words] : cases) {
+    std::string text = good;
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    std::ofstream(file) << text.replace(at, from.size(), to);
+    try {
+      read_manifest(dir.path().string());
+      ADD_FAILURE() << to << " was read";
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("manifest.json"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A free-flying Kinect in the crates scene: the loop moves, reveals, and gives the same views
