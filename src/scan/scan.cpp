@@ -84,7 +84,9 @@ std::vector<Eigen::Vector3d> backproject(const io::DepthImage& depth, const io::
   for (int v = 0; v < depth.height; ++v) {
     for (int u = 0; u < depth.width; ++u) {
       const std::uint16_t d = depth.at(v, u);
-      if (d == 0) continue;
+      // 0 is no measurement; so is the saturated 65535 (65.5 m at 1 mm units, beyond any depth
+      // camera): an image of it cast 300 000 rays of 65 m for two minutes.
+      if (d == 0 || d == io::kDepthSaturated) continue;
       const double z = double(d) / K.depth_scale;
       points[std::size_t(v) * depth.width + u] = {(u - K.cx) * z / K.fx, (v - K.cy) * z / K.fy, z};
     }

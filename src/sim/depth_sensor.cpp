@@ -102,7 +102,7 @@ Frame render(const RayCaster& caster, const Eigen::Isometry3d& T_world_sensor,
           z += config.noise_m_per_m2 * z * z * gaussian(config.seed, frame_index, pixel);
         if (config.quantize_disparity) z = fb / (std::round(8.0 * fb / z) / 8.0);
         const double raw = std::round(z * K.depth_scale);
-        if (!(z > 0.0) || raw < 1.0 || raw > 65535.0 || z > config.depth_max_m) {
+        if (!(z > 0.0) || raw < 1.0 || raw >= double(io::kDepthSaturated) || z > config.depth_max_m) {
           ++counts.no_surface;
           continue;
         }

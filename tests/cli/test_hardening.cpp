@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.hpp"
 
 namespace fvx::test {
@@ -207,6 +209,29 @@ TEST(Hardening, ASearchSpaceNoMapCanHoldIsRefusedBeforeAnyScan) {
     EXPECT_FALSE(std::filesystem::exists(dir / "x.pcd"));
     EXPECT_FALSE(std::filesystem::exists(dir / "gt.bt"));
   }
+}
+
+// A depth image whose every pixel is the saturated 65535 ran 112 s into 1.4 GB and exited 0
+// (300 000 rays of 65 m). 65535 is no measurement, as 0 is: the scan holds no points.
+TEST(Hardening, SaturatedDepthPixelsAreNoMeasurement) {
+  const TempDir dir;
+  const auto pgm = [&](const std::string& name, int valid) {  // 640x480, 16-bit big-endian
+    std::string pixels;
+    for (int i = 0; i < 640 * 480; ++i) {
+      const unsigned d = i >= 240 * 640 + 200 && i < 240 * 640 + 200 + valid ? 1500u : 65535u;
+      pixels += char(d >> 8);
+      pixels += char(d & 0xff);
+    }
+    std::ofstream(dir / name, std::ios::binary) << "P5\n640 480\n65535\n" << pixels;
+  };
+  pgm("saturated.pgm", 0);
+  pgm("forty.pgm", 40);
+  const std::string K = " --fx 525 --fy 525 --cx 319.5 --cy 239.5 -o m.bt";
+  expect_one_line(run_fvx(dir, "integrate saturated.pgm" + K, "timeout 60"), 1, "saturated.pgm: the scan holds no finite points");
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.bt"));
+  const RunResult r = run_fvx(dir, "integrate forty.pgm" + K, "timeout 60");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["results"]["scans"][0]["points"]["kept"], 40);
 }
 
 }  // namespace

@@ -8,10 +8,13 @@
 
 namespace fvx::io {
 
+/// The raw value a saturated or failed pixel holds in some encodings; read as no measurement.
+inline constexpr std::uint16_t kDepthSaturated = 65535;
+
 struct DepthImage {
   int width = 0;
   int height = 0;
-  std::vector<std::uint16_t> raw;  ///< row-major, 0 = no measurement
+  std::vector<std::uint16_t> raw;  ///< row-major, 0 and kDepthSaturated = no measurement
 
   std::uint16_t at(int row, int column) const { return raw[std::size_t(row) * width + column]; }
 };
