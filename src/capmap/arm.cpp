@@ -190,10 +190,14 @@ Eigen::Vector3d Arm::viewing_direction(const Eigen::VectorXd& q) const {
 }
 
 Eigen::VectorXd Arm::random_configuration(std::mt19937_64& rng) const {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   Eigen::VectorXd q(dof());
-  for (int j = 0; j < dof(); ++j) q[j] = lower_rad()[j] + unit(rng) * (upper_rad()[j] - lower_rad()[j]);
+  for (int j = 0; j < dof(); ++j) q[j] = random_joint_rad(j, rng);
   return q;
+}
+
+double Arm::random_joint_rad(int joint, std::mt19937_64& rng) const {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  return lower_rad()[joint] + unit(rng) * (upper_rad()[joint] - lower_rad()[joint]);
 }
 
 void Arm::jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen::Matrix3Xd& J_rotation) const {

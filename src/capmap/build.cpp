@@ -152,13 +152,12 @@ std::int64_t witness_bit(const Arm& arm, const CapabilityMap& map, const Eigen::
 void draw_witnesses(const Arm& arm, const BuildConfig& config, const CapabilityMap& map, std::mt19937_64& rng,
                     std::size_t i, std::size_t end, std::int64_t* landed, std::size_t& fk_evaluations) {
   const std::optional<FirstJointAxis>& axis = arm.first_joint_axis();
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<double> q0(std::size_t(config.turns_per_fk));
   while (i < end) {
     Eigen::VectorXd q = arm.random_configuration(rng);
     const std::size_t group = axis ? std::min(end - i, std::size_t(config.turns_per_fk)) : 1;
     q0[0] = q[0];
-    for (std::size_t k = 1; k < group; ++k) q0[k] = arm.lower_rad()[0] + unit(rng) * (arm.upper_rad()[0] - arm.lower_rad()[0]);
+    for (std::size_t k = 1; k < group; ++k) q0[k] = arm.random_joint_rad(0, rng);
     if (axis && config.use_first_joint_turn) {
       q[0] = 0.0;
       const Eigen::Isometry3d T_at_zero = arm.fk(q);

@@ -83,9 +83,9 @@ capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std
 /// Options given that the chosen method does not use: said, not silently dropped.
 std::vector<std::string> ignored_build_options(const Args& args, bool witness) {
   std::vector<std::string> ignored;
-  for (const char* name : {"restarts", "target-recall", "fk-per-witness"})
-    if (args.has(name) && witness == (name[0] == 'r'))
-      ignored.push_back(std::string("--") + name + (witness ? " is used by the IK methods only" : " is used by fk-witness only"));
+  if (witness && args.has("restarts")) ignored.push_back("--restarts is used by the IK methods only");
+  for (const char* name : {"target-recall", "fk-per-witness"})
+    if (!witness && args.has(name)) ignored.push_back(std::string("--") + name + " is used by fk-witness only");
   return ignored;
 }
 

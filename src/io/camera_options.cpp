@@ -13,16 +13,16 @@ const Intrinsics kK;  ///< the defaults --help shows
 std::vector<OptionSpec> intrinsics_options(bool with_size, const std::string& echo) {
   std::vector<OptionSpec> table = {
       {"intrinsics", 'K', "FILE", "depth camera intrinsics JSON (fvx or Open3D layout)", echo},
-      {"fx", 0, "PX", "focal length along u, pixels; overrides --intrinsics", echo + "/fx", dflt(kK.fx), in(-1e6, 1e6)},
-      {"fy", 0, "PX", "focal length along v, pixels; may be negative", echo + "/fy", dflt(kK.fy), in(-1e6, 1e6)},
-      {"cx", 0, "PX", "principal point u, pixels", echo + "/cx", dflt(kK.cx), in(-1e6, 1e6)},
-      {"cy", 0, "PX", "principal point v, pixels", echo + "/cy", dflt(kK.cy), in(-1e6, 1e6)},
+      {"fx", 0, "PX", "focal length along u, pixels; overrides --intrinsics", echo + "/fx", dflt(kK.fx), in(-kMaxPixels, kMaxPixels)},
+      {"fy", 0, "PX", "focal length along v, pixels; may be negative", echo + "/fy", dflt(kK.fy), in(-kMaxPixels, kMaxPixels)},
+      {"cx", 0, "PX", "principal point u, pixels", echo + "/cx", dflt(kK.cx), in(-kMaxPixels, kMaxPixels)},
+      {"cy", 0, "PX", "principal point v, pixels", echo + "/cy", dflt(kK.cy), in(-kMaxPixels, kMaxPixels)},
       {"depth-scale", 0, "N", "raw depth units per metre: 1000 (mm) or 5000 (TUM)", echo + "/depth_scale",
-       dflt(kK.depth_scale), above(0, 1e6)},
+       dflt(kK.depth_scale), above(0, kMaxPixels)},
   };
   if (with_size) {
-    table.push_back({"width", 0, "PX", "image width, pixels", echo + "/width", dflt(kK.width), in(1, 16384)});
-    table.push_back({"height", 0, "PX", "image height, pixels", echo + "/height", dflt(kK.height), in(1, 16384)});
+    table.push_back({"width", 0, "PX", "image width, pixels", echo + "/width", dflt(kK.width), in(1, kMaxImageSidePx)});
+    table.push_back({"height", 0, "PX", "image height, pixels", echo + "/height", dflt(kK.height), in(1, kMaxImageSidePx)});
   }
   return table;
 }
@@ -55,9 +55,9 @@ std::vector<OptionSpec> depth_camera_options(const std::string& echo) {
   return options({{{"sensor", 0, "FILE", "sensor JSON: intrinsics, width, height, depth_min_m, depth_max_m "
                                          "(default Kinect v1: 640x480, f 525, 0.5-4 m)", echo + "/sensor"},
                    {"depth-min", 0, "M", "nearest measured depth, metres; overrides --sensor",
-                    echo + "/sensor/depth_min_m", dflt(DepthCamera{}.depth_min_m), in(0, 1e3)},
+                    echo + "/sensor/depth_min_m", dflt(DepthCamera{}.depth_min_m), in(0, kMaxDepthM)},
                    {"depth-max", 0, "M", "farthest measured depth = sensor range s_r, metres",
-                    echo + "/sensor/depth_max_m", dflt(DepthCamera{}.depth_max_m), above(0, 1e3)}},
+                    echo + "/sensor/depth_max_m", dflt(DepthCamera{}.depth_max_m), above(0, kMaxDepthM)}},
                   intrinsics_options(true, echo + "/sensor/intrinsics")});
 }
 

@@ -12,18 +12,18 @@ namespace fvx::io {
 
 std::vector<std::string> Intrinsics::validate() const {
   std::vector<std::string> problems;
-  // The command line's limits (camera_options.cpp) hold for files too: a sensor file of
-  // width 1e9 must not size an image.
+  // The command line's limits hold for files too: a sensor file of width 1e9 must not size
+  // an image.
   auto focal = [&](double f, const char* name) {
-    if (!std::isfinite(f) || std::abs(f) < 1e-6 || std::abs(f) > 1e6)
+    if (!std::isfinite(f) || std::abs(f) < 1e-6 || std::abs(f) > kMaxPixels)
       problems.push_back(std::string(name) + " must be a non-zero focal length within ±1e6 pixels");
   };
   focal(fx, "fx");
   focal(fy, "fy");
-  if (!(std::abs(cx) <= 1e6) || !(std::abs(cy) <= 1e6)) problems.push_back("cx and cy must be within ±1e6 pixels");
-  if (!(depth_scale > 0.0 && depth_scale <= 1e6))
+  if (!(std::abs(cx) <= kMaxPixels) || !(std::abs(cy) <= kMaxPixels)) problems.push_back("cx and cy must be within ±1e6 pixels");
+  if (!(depth_scale > 0.0 && depth_scale <= kMaxPixels))
     problems.push_back("depth_scale must be in (0, 1e6] (raw units per metre, e.g. 1000 or 5000)");
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+  if (width < 1 || height < 1 || width > kMaxImageSidePx || height > kMaxImageSidePx)
     problems.push_back("width and height must be 1 to 16384 pixels");
   return problems;
 }
@@ -75,7 +75,7 @@ Intrinsics intrinsics_from_json(const nlohmann::json& j, const std::string& path
   for (const auto& [key, field] : {std::pair{"width", &k.width}, {"height", &k.height}}) {
     if (!j.contains(key)) continue;
     const double v = number(j, key, path);  // checked before the conversion: 1e30 is no int
-    if (!(v == std::floor(v) && v >= 1 && v <= 16384)) throw FileError(path, std::string("'") + key + "' must be 1 to 16384 pixels");
+    if (!(v == std::floor(v) && v >= 1 && v <= kMaxImageSidePx)) throw FileError(path, std::string("'") + key + "' must be 1 to 16384 pixels");
     *field = int(v);
   }
   const auto problems = k.validate();
@@ -90,7 +90,7 @@ Intrinsics read_intrinsics(const std::string& path) { return intrinsics_from_jso
 std::vector<std::string> DepthCamera::validate() const {
   std::vector<std::string> problems = intrinsics.validate();
   if (!std::isfinite(depth_min_m) || depth_min_m < 0.0) problems.push_back("depth_min_m must be >= 0 m");
-  if (!(depth_max_m > depth_min_m && depth_max_m <= 1000.0))
+  if (!(depth_max_m > depth_min_m && depth_max_m <= kMaxDepthM))
     problems.push_back("depth_max_m must be greater than depth_min_m and at most 1000 m");
   return problems;
 }

@@ -75,13 +75,14 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
   CaptureStderr capture;
   const bool binary = lowercase_extension(path) == ".bt";
 
+  std::string first_line;
+  std::getline(in, first_line);
+  in.seekg(0);
+  if (first_line.rfind(binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file", 0) != 0)
+    throw FileError(path, binary ? "not an OctoMap binary (.bt) file" + capture.text() : "not an OctoMap .ot file");
+  check_octree_stream(path, binary);
+
   if (binary) {
-    std::string first_line;
-    std::getline(in, first_line);
-    in.seekg(0);
-    if (first_line.rfind("# Octomap OcTree binary file", 0) != 0)
-      throw FileError(path, "not an OctoMap binary (.bt) file" + capture.text());
-    check_octree_stream(path, binary);
     Tree probe(0.1);
     // readBinary needs the resolution from the header; read into a probe tree, then move.
     if (!probe.readBinary(in) || in.bad() || (in.fail() && !in.eof()))
@@ -93,11 +94,6 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
     return map;
   }
 
-  std::string first_line;
-  std::getline(in, first_line);
-  in.seekg(0);
-  if (first_line.rfind("# Octomap OcTree file", 0) != 0) throw FileError(path, "not an OctoMap .ot file");
-  check_octree_stream(path, binary);
   std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(in));
   if (!tree) throw FileError(path, "not a readable OctoMap .ot file" + capture.text());
   if (in.fail()) throw FileError(path, "truncated .ot file" + capture.text());

@@ -129,9 +129,7 @@ namespace {
 /// The search model's settings, each optional (absent in sessions written before it existed).
 void read_search_model(const Json& j, const Reader& r, Manifest& m) {
   const auto flag = [&](const char* key, bool& out) {
-    if (!j.contains(key)) return;
-    if (!j[key].is_boolean()) r.fail(std::string("'") + key + "' must be true or false");
-    out = j[key].get<bool>();
+    if (j.contains(key)) out = r.flag(j, key);
   };
   flag("near_voids", m.near_voids);
   flag("hull_in_bounds", m.hull_in_bounds);
@@ -140,11 +138,7 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
     m.target_size_m = r.number(j, "target_size_m");
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
   }
-  if (j.contains("unknown_depth_cells")) {
-    const double n = r.number(j, "unknown_depth_cells");
-    if (!(n >= 0 && n <= 1000 && n == std::floor(n))) r.fail("'unknown_depth_cells' must be a whole number in [0, 1000]");
-    m.unknown_depth_cells = int(n);
-  }
+  if (j.contains("unknown_depth_cells")) m.unknown_depth_cells = int(r.integer(j, "unknown_depth_cells", 0, 1000));
   if (j.contains("accumulation")) {
     m.accumulation = r.text(j, "accumulation");
     if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");

@@ -71,6 +71,8 @@ class Arm {
   Eigen::Vector3d viewing_direction(const Eigen::VectorXd& q) const;
   /// Joint values drawn uniformly within the limits, one draw of `rng` per joint in order.
   Eigen::VectorXd random_configuration(std::mt19937_64& rng) const;
+  /// Joint `joint` drawn uniformly within its limits, one draw of `rng`.
+  double random_joint_rad(int joint, std::mt19937_64& rng) const;
   /// d(position of the sensor)/dq (3×n) and d(rotation vector)/dq (3×n), base frame.
   void jacobian(const Eigen::VectorXd& q, Eigen::Matrix3Xd& J_position, Eigen::Matrix3Xd& J_rotation) const;
 

@@ -7,6 +7,12 @@
 
 namespace fvx::io {
 
+/// The limits of a camera model, the same on the command line (camera_options) and in files
+/// (validate): image sides, |fx|, |fy|, |cx|, |cy| and depth_scale, and the farthest depth.
+inline constexpr int kMaxImageSidePx = 16384;
+inline constexpr double kMaxPixels = 1e6;
+inline constexpr double kMaxDepthM = 1000.0;
+
 /// Pinhole model in pixels: u = fx·x/z + cx, v = fy·y/z + cy (optical frame: z forward,
 /// x right, y down). A negative focal length (ICL-NUIM's fy = −480) flips that axis and is
 /// used as given.
