@@ -95,10 +95,44 @@ Arm Arm::from_urdf(const std::string& urdf_path, const ArmConfig& config) {
   return from_urdf_string(text.str(), config, urdf_path);
 }
 
+namespace {
+
+/// XML is UTF-8 text. TinyXML (under urdfdom) steps over a multi-byte character by its lead
+/// byte's length, so a lead byte cut short at the end made it read past the text (found by
+/// fuzzing, under ASan): such text is refused before it is parsed.
+void require_utf8_text(const std::string& text, const std::string& source) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+    bool valid = length != 0 && lead != 0 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+    if (!valid) throw FileError(source, "not UTF-8 text (byte " + std::to_string(i) + "); a URDF is XML");
+    i += length;
+  }
+}
+
+/// urdfdom's links own their children (shared_ptr): the model of a URDF whose links form a
+/// cycle would never be freed (LeakSanitizer, fuzzing). Cutting every link's child lists when
+/// the model is no longer needed frees it whatever its shape.
+struct CutModelOnExit {
+  const urdf::ModelInterfaceSharedPtr& model;
+  ~CutModelOnExit() {
+    if (!model) return;
+    for (auto& [name, link] : model->links_) {
+      link->child_links.clear();
+      link->child_joints.clear();
+    }
+  }
+};
+
+}  // namespace
+
 Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, const std::string& source) {
+  require_utf8_text(urdf, source);
   // urdfdom logs parse problems on stderr through console_bridge; fvx says it once, below.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);
+  const CutModelOnExit cut{model};
   if (!model) throw FileError(source, "not a valid URDF (it does not parse)");
   const auto base = model->getLink(config.base_link);
   const auto tip = model->getLink(config.tip_link);

@@ -271,8 +271,8 @@ int run_replay(const Args& args) {
   } else {
     print_rows(shown, kColumns, format, std::cout);
   }
-  if (!failure.empty()) throw Error("fvx replay: " + failure + "; the " + std::to_string(rows.size()) +
-                                    " views before it are in " + dir.string());
+  if (!failure.empty()) throw Error("fvx replay: " + failure + (shown.empty() ? "; nothing was written" : "; the " +
+                                    std::to_string(shown.size()) + " views before it are in " + dir.string()));
   std::cerr << "fvx replay: " << rows.size() << " views; maps, reports and volumes.png in " << dir.string() << "\n";
   return 0;
 }

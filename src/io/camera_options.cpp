@@ -36,6 +36,7 @@ Intrinsics apply_intrinsics_flags(const Args& args, Intrinsics K) {
     args.read(name, *field);
   if (args.has("width")) args.read("width", K.width);  // only commands that render have them
   if (args.has("height")) args.read("height", K.height);
+  K.size_stated = K.size_stated || (args.has("width") && args.has("height"));
   return K;
 }
 

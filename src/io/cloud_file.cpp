@@ -1,6 +1,8 @@
 #include "fvx/io/cloud_file.hpp"
 
 #include <pcl/PCLPointCloud2.h>
+
+#include <stdexcept>
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
@@ -55,6 +57,8 @@ CloudFile read_cloud(const std::string& path) {
     }
   } catch (const pcl::PCLException& e) {
     throw FileError(path, std::string("corrupt point cloud: ") + e.what());
+  } catch (const std::logic_error& e) {  // PCL's header parser indexes with at() (fuzzing found it)
+    throw FileError(path, std::string("corrupt point cloud header: ") + e.what());
   }
   if (result < 0) throw FileError(path, "corrupt or unreadable point cloud (header or data)");
   if (!has_field(blob, "x") || !has_field(blob, "y") || !has_field(blob, "z"))

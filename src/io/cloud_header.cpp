@@ -1,10 +1,13 @@
 #include "fvx/io/cloud_header.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -32,6 +35,8 @@ bool is_number(const std::string& token) {
   return !token.empty() && end == token.c_str() + token.size();
 }
 
+void check_viewpoint(const std::string& path, const std::string& line, const std::vector<std::string>& values);
+
 struct PcdHeader {
   std::vector<std::string> fields, sizes, types, counts;
   long long width = -1, height = -1, points = -1;
@@ -39,30 +44,62 @@ struct PcdHeader {
   std::size_t values_per_point = 0, point_bytes = 0;
 };
 
-/// Reads the header lines up to DATA; `in` is left at the first data byte.
+/// The keyword PCL's PCDReader::readHeader takes a line for: it compares the first token's
+/// prefix, in this order ("POINTS6" is POINTS to it), so this check must too. "" for none.
+std::string pcd_keyword(const std::string& token) {
+  static const char* const kKeywords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
+                                          "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+  for (const char* k : kKeywords)
+    if (token.compare(0, std::strlen(k), k) == 0) return std::string(k) == "COLUMNS" ? "FIELDS" : k;
+  return "";
+}
+
+/// Reads the header lines up to DATA as PCL will; `in` is left at the first data byte. PCL
+/// sizes its buffer at every POINTS line, splits values only at spaces, tabs and CRs, and
+/// reads on after DATA while lines start with a keyword (binary data that begins with
+/// "POINTS 4294967295" was a header line to it). So a repeated keyword, a keyword after DATA,
+/// a count line with more than one value and other control characters are refused: what this
+/// check reads is then what PCL reads.
 PcdHeader read_pcd_header(const std::string& path, std::istream& in) {
   PcdHeader h;
   std::string line;
-  for (std::size_t n = 0; h.data.empty(); ++n) {
-    if (n > kMaxHeaderLines || !std::getline(in, line)) throw FileError(path, "corrupt PCD header: no DATA line");
+  std::set<std::string> seen;
+  std::streamoff data_at = -1;
+  for (std::size_t n = 0; n <= kMaxHeaderLines && std::getline(in, line); ++n) {
+    if (line.empty()) continue;
     std::vector<std::string> t = split_whitespace(line);
-    if (t.empty() || t[0][0] == '#') continue;
-    const std::string key = t[0];
+    if (!t.empty() && t[0][0] == '#') continue;
+    const std::string key = t.empty() ? "" : pcd_keyword(t[0]);
+    if (key.empty() && data_at >= 0) break;  // the data: PCL's header ends here too
+    if (key.empty()) throw FileError(path, "corrupt PCD header: '" + line + "' before DATA");
+    if (data_at >= 0) throw FileError(path, "corrupt PCD data: it starts with a header line (" + key + ")");
+    if (std::any_of(line.begin(), line.end(), [](char c) { return std::iscntrl(static_cast<unsigned char>(c)) && c != '\t' && c != '\r'; }))
+      throw FileError(path, "corrupt PCD header: a control character in line " + std::to_string(n + 1));
     t.erase(t.begin());
+    if (key == "VERSION") continue;
+    if (!seen.insert(key).second) throw FileError(path, "corrupt PCD header: " + key + " is given twice");
+    if (t.size() != 1 && (key == "WIDTH" || key == "HEIGHT" || key == "POINTS" || key == "DATA"))
+      throw FileError(path, "corrupt PCD header: '" + line + "'");
     if (key == "FIELDS") h.fields = t;
     else if (key == "SIZE") h.sizes = t;
     else if (key == "TYPE") h.types = t;
     else if (key == "COUNT") h.counts = t;
-    else if (key == "WIDTH" && t.size() == 1) h.width = count_of(path, "WIDTH", t[0]);
-    else if (key == "HEIGHT" && t.size() == 1) h.height = count_of(path, "HEIGHT", t[0]);
-    else if (key == "POINTS" && t.size() == 1) h.points = count_of(path, "POINTS", t[0]);
-    else if (key == "VIEWPOINT") {
-      bool finite = t.size() == 7;
-      for (const std::string& v : t) finite = finite && is_number(v) && std::isfinite(std::strtod(v.c_str(), nullptr));
-      if (!finite) throw FileError(path, "VIEWPOINT '" + line.substr(line.find("VIEWPOINT") + 9) + "' is not seven finite numbers");
-    } else if (key == "DATA" && t.size() == 1) h.data = t[0];
+    else if (key == "WIDTH") h.width = count_of(path, "WIDTH", t[0]);
+    else if (key == "HEIGHT") h.height = count_of(path, "HEIGHT", t[0]);
+    else if (key == "POINTS") h.points = count_of(path, "POINTS", t[0]);
+    else if (key == "VIEWPOINT") check_viewpoint(path, line, t);
+    else h.data = t[0], data_at = in.eof() ? std::streamoff(std::filesystem::file_size(path)) : std::streamoff(in.tellg());
   }
+  if (data_at < 0) throw FileError(path, "corrupt PCD header: no DATA line");
+  in.clear();
+  in.seekg(data_at);
   return h;
+}
+
+void check_viewpoint(const std::string& path, const std::string& line, const std::vector<std::string>& values) {
+  bool finite = values.size() == 7;
+  for (const std::string& v : values) finite = finite && is_number(v) && std::isfinite(std::strtod(v.c_str(), nullptr));
+  if (!finite) throw FileError(path, "VIEWPOINT '" + line.substr(line.find("VIEWPOINT") + 9) + "' is not seven finite numbers");
 }
 
 /// FIELDS, SIZE, TYPE and COUNT agree, and each size is one its type can have.
@@ -168,6 +205,10 @@ void check_ply_header(const std::string& path) {
     const std::vector<std::string> t = split_whitespace(line);
     if (t.empty()) continue;
     if (t[0] == "end_header") break;
+    // PCL skips a line it does not know and reads on with the wrong layout: refuse it here.
+    static const std::set<std::string> kKeywords = {"ply", "format", "comment", "obj_info", "element", "property"};
+    if (!kKeywords.count(t[0]) || (t[0] == "ply") != (n == 0))
+      throw FileError(path, "corrupt PLY header: '" + line + "'");
     if (t[0] == "format" && t.size() >= 2) format = t[1];
     if (t[0] == "element" && t.size() == 3) elements.push_back({t[1], count_of(path, "element " + t[1], t[2]), 0});
     if (t[0] != "property") continue;
@@ -175,6 +216,9 @@ void check_ply_header(const std::string& path) {
     const std::string type = list ? t[2] : (t.size() == 3 ? t[1] : "");
     if (elements.empty() || !ply_type_bytes(type) || (list && !ply_type_bytes(t[3])))
       throw FileError(path, "corrupt PLY header: '" + line + "'");
+    // PCL aborts on some list properties of vertices (an assert in its reader).
+    if (list && elements.back().name == "vertex")
+      throw FileError(path, "PLY vertex property '" + t.back() + "' is a list; fvx reads vertices of single values");
     elements.back().min_bytes += ply_type_bytes(type);
   }
   if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")

@@ -1,23 +1,34 @@
 #include "fvx/io/depth_image.hpp"
 
+#include <algorithm>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "fvx/core/atomic_file.hpp"
+#include "fvx/core/capture_stderr.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/io/image_header.hpp"
 
 namespace fvx::io {
 
 DepthImage read_depth_image(const std::string& path) {
   require_readable_file(path);
+  const ImageHeader header = check_image_header(path);  // before OpenCV sizes the image
   cv::Mat image;
+  CaptureStderr capture;  // libpng and OpenCV print their complaints; they go into ours
   try {
     // IMREAD_ANYDEPTH keeps 16 bits; PGM is big-endian on disk and OpenCV swaps it.
     image = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
   } catch (const cv::Exception& e) {
-    throw FileError(path, std::string("unreadable image: ") + e.what());
+    std::string what = e.what();  // OpenCV's messages span lines
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw FileError(path, "unreadable " + header.format + ": " + what);
   }
-  if (image.empty()) throw FileError(path, "not a readable PNG, PGM or TIFF image");
+  const std::string said = capture.text();
+  if (image.empty() || image.cols != header.width || image.rows != header.height)
+    throw FileError(path, "unreadable " + header.format + " (corrupt or cut short)" +
+                              (said.empty() ? "" : ": " + said));
   if (image.channels() != 1)
     throw FileError(path, "has " + std::to_string(image.channels()) +
                               " channels; a depth image has one (is this the colour image?)");

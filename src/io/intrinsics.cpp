@@ -78,6 +78,7 @@ Intrinsics intrinsics_from_json(const nlohmann::json& j, const std::string& path
     if (!(v == std::floor(v) && v >= 1 && v <= kMaxImageSidePx)) throw FileError(path, std::string("'") + key + "' must be 1 to 16384 pixels");
     *field = int(v);
   }
+  k.size_stated = j.contains("width") && j.contains("height");
   const auto problems = k.validate();
   if (!problems.empty()) throw FileError(path, join_problems(problems));
   return k;

@@ -3,8 +3,6 @@
 #include <octomap/ColorOcTree.h>
 #include <octomap/OcTreeStamped.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <iostream>
 
 #include "fvx/core/atomic_file.hpp"
+#include "fvx/core/capture_stderr.hpp"
 #include "fvx/core/error.hpp"
 #include "octree_stream.hpp"
 #include "tree.hpp"
@@ -20,45 +19,11 @@ namespace fvx::map {
 namespace {
 
 /// OctoMap reports problems (and chatter such as " done.") with fprintf(stderr) and
-/// std::cerr. While it reads or writes, file descriptor 2 goes to a temporary file; what it
-/// said becomes part of fvx's one-line error instead of stray lines on stderr.
-class CaptureStderr {
- public:
-  CaptureStderr() {
-    std::fflush(stderr);
-    std::cerr.flush();
-    file_ = std::tmpfile();
-    saved_fd_ = file_ ? ::dup(STDERR_FILENO) : -1;
-    if (saved_fd_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
-  }
-  ~CaptureStderr() { restore(); }
-  CaptureStderr(const CaptureStderr&) = delete;
-  CaptureStderr& operator=(const CaptureStderr&) = delete;
-
-  /// What OctoMap printed, as " (OctoMap: ...)" on one line, or "".
-  std::string text() {
-    restore();
-    if (!file_) return "";
-    std::string t;
-    std::rewind(file_);
-    for (int c; (c = std::fgetc(file_)) != EOF;) t += c == '\n' ? ' ' : char(c);
-    while (!t.empty() && t.back() == ' ') t.pop_back();
-    while (!t.empty() && t.front() == ' ') t.erase(0, 1);
-    return t.empty() ? "" : " (OctoMap: " + t + ")";
-  }
-
- private:
-  void restore() {
-    if (saved_fd_ < 0) return;
-    std::fflush(stderr);
-    std::cerr.flush();
-    ::dup2(saved_fd_, STDERR_FILENO);
-    ::close(saved_fd_);
-    saved_fd_ = -1;
-  }
-  std::FILE* file_ = nullptr;
-  int saved_fd_ = -1;
-};
+/// std::cerr: what it said while it read or wrote becomes part of fvx's one-line error.
+std::string octomap_said(CaptureStderr& capture) {
+  const std::string t = capture.text();
+  return t.empty() ? "" : " (OctoMap: " + t + ")";
+}
 
 void require_map_extension(const std::string& path) {
   const std::string ext = lowercase_extension(path);
@@ -79,15 +44,15 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
   std::getline(in, first_line);
   in.seekg(0);
   if (first_line.rfind(binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file", 0) != 0)
-    throw FileError(path, binary ? "not an OctoMap binary (.bt) file" + capture.text() : "not an OctoMap .ot file");
+    throw FileError(path, binary ? "not an OctoMap binary (.bt) file" + octomap_said(capture) : "not an OctoMap .ot file");
   check_octree_stream(path, binary);
 
   if (binary) {
     Tree probe(0.1);
     // readBinary needs the resolution from the header; read into a probe tree, then move.
     if (!probe.readBinary(in) || in.bad() || (in.fail() && !in.eof()))
-      throw FileError(path, "truncated or corrupt .bt file" + capture.text());
-    if (in.fail()) throw FileError(path, "truncated .bt file" + capture.text());
+      throw FileError(path, "truncated or corrupt .bt file" + octomap_said(capture));
+    if (in.fail()) throw FileError(path, "truncated .bt file" + octomap_said(capture));
     OccupancyMap map(probe.getResolution());
     map.impl_->tree.swapContent(probe);
     map.impl_->tree.check_inner_nodes();
@@ -95,8 +60,8 @@ OccupancyMap OccupancyMap::load(const std::string& path) {
   }
 
   std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(in));
-  if (!tree) throw FileError(path, "not a readable OctoMap .ot file" + capture.text());
-  if (in.fail()) throw FileError(path, "truncated .ot file" + capture.text());
+  if (!tree) throw FileError(path, "not a readable OctoMap .ot file" + octomap_said(capture));
+  if (in.fail()) throw FileError(path, "truncated .ot file" + octomap_said(capture));
   OccupancyMap map(tree->getResolution());
   auto& mine = map.impl_->tree;
   if (auto* plain = dynamic_cast<octomap::OcTree*>(tree.get())) {
@@ -132,7 +97,7 @@ void OccupancyMap::save(const std::string& path) const {
     } else {
       ok = impl_->tree.write(out);
     }
-    if (!ok || !out) throw FileError(path, "cannot write the map" + capture.text());
+    if (!ok || !out) throw FileError(path, "cannot write the map" + octomap_said(capture));
   });
 }
 

@@ -15,28 +15,45 @@ constexpr int kTreeDepth = 16;  // OctoMap's key depth: nodes at depth 16 are le
 
 struct Header {
   std::string id;
-  long long size = -1;  ///< nodes (.ot: held to it; .bt: only 0, an empty tree, is used)
+  long long size = 0;  ///< nodes (.ot: held to it); 0, also without a size line, reads no data, as OctoMap
   std::size_t data_at = 0;
 };
 
-/// The header lines up to "data" (OctoMap's own keys; comments start with '#').
+/// The header up to "data", read token by token as OctoMap's AbstractOcTree::readHeader reads
+/// it, so that the walk starts where OctoMap will: a line-based reading took "res 0.4data" for
+/// a res line and started elsewhere (a fuzzed .bt then made OctoMap recurse past the stack).
 Header read_header(const std::string& path, const std::string& bytes) {
   Header h;
   std::istringstream in(bytes);
-  std::string line;
+  const auto skip_line = [&] {
+    for (int c = 0; in.good() && c != '\n';) c = in.get();
+  };
   bool res = false;
-  for (int n = 0; n < 1000 && std::getline(in, line); ++n) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line);
-    std::string key;
-    words >> key;
-    if (key == "id") words >> h.id;
-    else if (key == "size") words >> h.size;
-    else if (key == "res") res = true;
-    else if (key == "data") {
+  std::string token;
+  while (in.good()) {
+    in >> token;  // as OctoMap: a failed read leaves the last token
+    if (token == "data") {
+      skip_line();
       if (h.id.empty() || !res) throw FileError(path, "corrupt OctoMap header: no id or res before data");
-      h.data_at = std::size_t(in.tellg());
+      if (h.id == "1") h.id = "OcTree";  // OctoMap's deprecated id
+      const std::streamoff at = in.tellg();  // -1 when the data line was the file's last
+      h.data_at = at < 0 ? bytes.size() : std::size_t(at);
       return h;
+    }
+    if (token.compare(0, 1, "#") == 0) {
+      skip_line();
+    } else if (token == "id") {
+      in >> h.id;
+    } else if (token == "res") {
+      double value = 0.0;
+      in >> value;
+      res = value > 0.0;
+    } else if (token == "size") {
+      unsigned value = 0;
+      in >> value;
+      h.size = value;
+    } else {
+      skip_line();  // OctoMap warns and skips a keyword it does not know
     }
   }
   throw FileError(path, "corrupt OctoMap header: no data line");
@@ -118,7 +135,7 @@ void check_octree_stream(const std::string& path, bool binary) {
     end = walk_binary(path, bytes, h.data_at, nodes);
   } else {
     end = walk_full(path, bytes, h.data_at, value_bytes, nodes);
-    if (h.size >= 0 && nodes != h.size)
+    if (nodes != h.size)
       throw FileError(path, "corrupt OctoMap data: " + std::to_string(nodes) + " nodes, the header says " +
                                 std::to_string(h.size));
   }

@@ -124,10 +124,12 @@ Scan load_scan(const ScanSource& source, const LoadConfig& config,
       throw UsageError(source.path + ": a depth image needs intrinsics (--intrinsics FILE or --fx/--fy/--cx/--cy)");
     const io::DepthImage depth = io::read_depth_image(source.path);
     const io::Intrinsics& K = *config.intrinsics;
-    if (depth.width != K.width || depth.height != K.height)
-      warnings.push_back(source.path + ": image is " + std::to_string(depth.width) + "x" +
-                         std::to_string(depth.height) + " but the intrinsics say " +
-                         std::to_string(K.width) + "x" + std::to_string(K.height));
+    // A stated size that differs means the intrinsics are another camera's (or another
+    // resolution's): back-projecting with them would put every point in the wrong place.
+    if (K.size_stated && (depth.width != K.width || depth.height != K.height))
+      throw FileError(source.path, "the image is " + std::to_string(depth.width) + "x" +
+                                       std::to_string(depth.height) + " but the intrinsics say " +
+                                       std::to_string(K.width) + "x" + std::to_string(K.height));
     scan.points_sensor = backproject(depth, K);
   } else {
     io::CloudFile cloud = io::read_cloud(source.path);

@@ -24,15 +24,15 @@ Recorder::Recorder(std::string dir, Manifest manifest, const io::DepthCamera& se
   write_manifest(dir_, manifest_);
 }
 
-Recorder::Recorder(std::string dir) : dir_(std::move(dir)) {
-  for (const char* sub : {"maps", "reports"}) create_folder((std::filesystem::path(dir_) / sub).string());
-}
+Recorder::Recorder(std::string dir) : dir_(std::move(dir)) {}
 
 void Recorder::save_map(int view, const map::OccupancyMap& map) const {
+  create_folder((std::filesystem::path(dir_) / "maps").string());
   map.save((std::filesystem::path(dir_) / "maps" / view_file_name(view, ".ot")).string());
 }
 
 void Recorder::save_report(int view, const std::string& report_text) const {
+  create_folder((std::filesystem::path(dir_) / "reports").string());
   write_file_atomically((std::filesystem::path(dir_) / "reports" / view_file_name(view, ".json")).string(),
                         [&](std::ostream& out) { out << report_text; });
 }

@@ -124,14 +124,16 @@ struct LabelBox {
   /// Empty (label.empty()) when the cells fill too little of the box for a dense array
   /// (map::KeyIndex::dense_fits, the key index's own rule).
   explicit LabelBox(const std::vector<map::VoxelKey>& cells) {
+    if (cells.empty()) return;  // (the sanitizer job found hi - lo of no cells overflowing)
     int hi[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) lo[a] = INT32_MAX, hi[a] = INT32_MIN;
     for (const map::VoxelKey& k : cells) {
       const int c[3] = {k.x, k.y, k.z};
       for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - 1), hi[a] = std::max(hi[a], c[a] + 1);
     }
-    const std::int64_t n[3] = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
-    if (cells.empty() || !map::KeyIndex::dense_fits(cells.size(), double(n[0]) * double(n[1]) * double(n[2]))) return;
+    const std::int64_t n[3] = {std::int64_t(hi[0]) - lo[0] + 1, std::int64_t(hi[1]) - lo[1] + 1,
+                               std::int64_t(hi[2]) - lo[2] + 1};
+    if (!map::KeyIndex::dense_fits(cells.size(), double(n[0]) * double(n[1]) * double(n[2]))) return;
     stride[1] = n[0];
     stride[2] = n[0] * n[1];
     label.assign(std::size_t(stride[2] * n[2]), kNone);

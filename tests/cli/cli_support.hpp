@@ -18,6 +18,24 @@ struct RunResult {
 
 /// `fvx <arguments>` in `dir`; arguments are passed through the shell as written, after the
 /// variable assignments in `environment` ("NAME=value ...").
+/// A shell prefix that caps the binary's address space at 4 GB, so that a reader that
+/// allocates what a lying header claims fails the test instead of the machine. Under
+/// AddressSanitizer (scripts/sanitize.sh), whose shadow memory needs terabytes of address
+/// space, ASAN_OPTIONS' max_allocation_size_mb caps it instead.
+inline std::string memory_limit() {
+#if defined(__SANITIZE_ADDRESS__)
+  return "";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return "";
+#else
+  return "ulimit -v 4000000; ";
+#endif
+#else
+  return "ulimit -v 4000000; ";
+#endif
+}
+
 inline RunResult run_fvx(const TempDir& dir, const std::string& arguments, const std::string& environment = "") {
   const std::string out = dir / ".stdout", err = dir / ".stderr";
   const std::string command = "cd '" + dir.path().string() + "' && " + environment + " '" FVX_BINARY "' " + arguments +

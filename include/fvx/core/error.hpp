@@ -11,10 +11,16 @@
 
 namespace fvx {
 
+namespace detail {
+/// The message with control characters written as escapes (\n, \r, \xNN): a file's bytes
+/// that become part of a message (a key, a token) cannot break its one line.
+std::string one_line(const std::string& message);
+}  // namespace detail
+
 /// Input or runtime problem: bad data, unreadable file, failed write. Exit status 1.
 class Error : public std::runtime_error {
  public:
-  explicit Error(const std::string& message) : std::runtime_error(message) {}
+  explicit Error(const std::string& message) : std::runtime_error(detail::one_line(message)) {}
 };
 
 /// The command line itself is wrong (unknown option, non-numeric value, value out of range).

@@ -24,6 +24,9 @@ struct Intrinsics {
   double depth_scale = 1000.0;   ///< raw depth units per metre: 1000 (mm), 5000 (TUM)
   int width = 640;               ///< image width, pixels
   int height = 480;              ///< image height, pixels
+  /// Whether a file or --width/--height stated the size (else it is the default): a depth
+  /// image of another size is then refused, since cx, cy and the image disagree.
+  bool size_stated = false;
 
   /// Every violation, one line each; empty when valid.
   std::vector<std::string> validate() const;

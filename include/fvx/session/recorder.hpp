@@ -21,7 +21,8 @@ class Recorder {
   /// Creates dir/scans, dir/maps and dir/reports, writes the sensor file (manifest.sensor)
   /// and the manifest without views. `manifest.views` must be empty.
   Recorder(std::string dir, Manifest manifest, const io::DepthCamera& sensor);
-  /// A replay's output: creates dir/maps and dir/reports; no manifest.
+  /// A replay's output: dir/maps and dir/reports, made with the first view written (a
+  /// replay that fails at its first view leaves no folder); no manifest.
   explicit Recorder(std::string dir);
 
   /// The files of view `view`, relative to the session folder, with its poses and joints.

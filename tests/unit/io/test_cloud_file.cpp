@@ -48,6 +48,26 @@ TEST(CloudFile, AsciiPly) {
   EXPECT_EQ(c.points[1], Eigen::Vector3d(4, 5, 6));
 }
 
+// PCL skips a header line it does not know and reads the data with the wrong layout, and
+// aborts on a list property of vertices: both are refused before PCL reads the file.
+TEST(CloudFile, PlyHeadersPclWouldMisreadAreRefused) {
+  const test::TempDir dir;
+  const std::string body = "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
+  for (const auto& [header, words] :
+       {std::pair{"ply\nformat ascii 1.0\n" + body + "pront face 1\nend_header\n0 0 1\n", "corrupt PLY header: 'pront face 1'"},
+        {"format ascii 1.0\n" + body + "end_header\n0 0 1\n", "corrupt PLY header: 'format ascii 1.0'"},
+        {"ply\nformat ascii 1.0\n" + body + "property list uchar int idx\nend_header\n0 0 1 1 5\n",
+         "PLY vertex property 'idx' is a list"}}) {
+    std::ofstream(dir / "p.ply") << header;
+    try {
+      read_cloud(dir / "p.ply");
+      ADD_FAILURE() << header;
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(CloudFileRealData, BinaryCompressedOrganisedKinectFrameWithLegacyViewpoint) {
   FVX_REAL_DATA_OR_SKIP(path, "pcl-kinect-sequences/pcl_grabber_sequences/pcd/frame_20121214T142255.814212.pcd");
   const CloudFile c = read_cloud(path);

@@ -37,6 +37,45 @@ TEST(DepthImage, EightBitAndColourImagesAreRefused) {
     EXPECT_THROW(read_depth_image(dir / name), FileError) << name;
 }
 
+// The header is read before OpenCV decodes (image_header.cpp) and must give the size OpenCV
+// decodes: images written by OpenCV (libtiff puts a big image's directory after its pixels,
+// far past the first 4 KB), and PGMs with comments or in ascii.
+TEST(DepthImage, TheHeaderSizeIsTheDecodedSizeForEveryWriter) {
+  const test::TempDir dir;
+  for (const auto& [rows, cols] : {std::pair{1, 1}, {480, 640}, {1500, 2000}, {3, 16384}}) {
+    const cv::Mat image(rows, cols, CV_16UC1, cv::Scalar(1234));
+    for (const char* name : {"d.png", "d.pgm", "d.tiff"}) {
+      ASSERT_TRUE(cv::imwrite(dir / name, image));
+      const DepthImage depth = read_depth_image(dir / name);
+      EXPECT_EQ(depth.width, cols) << name;
+      EXPECT_EQ(depth.height, rows) << name;
+    }
+  }
+  std::ofstream(dir / "c.pgm", std::ios::binary) << "P5\n# made by hand\n# two comments\n2 1\n65535\n"
+                                                 << std::string("\x03\xe8\x07\xd0", 4);
+  const DepthImage commented = read_depth_image(dir / "c.pgm");
+  EXPECT_EQ(commented.width, 2);
+  EXPECT_EQ(commented.at(0, 1), 2000);
+  std::ofstream(dir / "a.pgm") << "P2\n3 2\n65535\n1 2 3\n4 5 60000\n";
+  EXPECT_EQ(read_depth_image(dir / "a.pgm").at(1, 2), 60000);
+}
+
+TEST(DepthImage, SizesBeyondTheLimitsAreRefusedBeforeDecoding) {
+  const test::TempDir dir;
+  for (const auto& [header, words] : {std::pair{"P5\n16385 1\n65535\n", "PGM width 16385 is not 1 to 16384 pixels"},
+                                      {"P5\n0 10\n65535\n", "PGM width 0 is not 1 to 16384 pixels"},
+                                      {"P5\n9000 9000\n65535\n", "PGM of 9000x9000 pixels is larger than 2^26 pixels"},
+                                      {"P5\n# only a comment\n", "PGM header without a width and a height"}}) {
+    std::ofstream(dir / "big.pgm", std::ios::binary) << header;
+    try {
+      read_depth_image(dir / "big.pgm");
+      ADD_FAILURE() << header;
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(DepthImageRealData, TiffBackProjectsToTheOrganisedPcdWithinOneMillimetre) {
   const std::string stem = "pcl-kinect-sequences/pcl_grabber_sequences/";
   FVX_REAL_DATA_OR_SKIP(tiff, stem + "tiff/frame_20121214T142255.814212_depth.tiff");
