@@ -4,11 +4,15 @@
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
+#include <map>
+#include <functional>
 #include <sstream>
 
 #include "fvx/core/atomic_file.hpp"
@@ -111,9 +115,40 @@ void require_utf8_text(const std::string& text, const std::string& source) {
   }
 }
 
-/// urdfdom's links own their children (shared_ptr): the model of a URDF whose links form a
-/// cycle would never be freed (LeakSanitizer, fuzzing). Cutting every link's child lists when
-/// the model is no longer needed frees it whatever its shape.
+/// urdfdom links each joint's child into its parent's child list (shared_ptr) before it checks
+/// the tree: joints whose links form a cycle leave a model that is never freed, even when
+/// urdfdom then refuses the file (LeakSanitizer, fuzzing). Such joints are refused first,
+/// reading the same XML with the same parser (TinyXML).
+void require_acyclic_joints(const std::string& urdf, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(urdf.c_str());
+  const TiXmlElement* robot = document.FirstChildElement("robot");
+  if (document.Error() || !robot) return;  // urdfdom refuses it without linking anything
+  std::map<std::string, std::set<std::string>> children;  // parent link -> child links
+  for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = j->FirstChildElement("parent");
+    const TiXmlElement* child = j->FirstChildElement("child");
+    const char* p = parent ? parent->Attribute("link") : nullptr;
+    const char* c = child ? child->Attribute("link") : nullptr;
+    if (p && c) children[p].insert(c);
+  }
+  // Depth-first search with colours: a link met again while on the path closes a cycle.
+  std::map<std::string, int> colour;  // 0 unseen, 1 on the path, 2 done
+  std::function<void(const std::string&)> visit = [&](const std::string& link) {
+    colour[link] = 1;
+    for (const std::string& c : children[link]) {
+      if (colour[c] == 1) throw FileError(source, "the joints' links form a cycle (through link '" + c + "')");
+      if (colour[c] == 0) visit(c);
+    }
+    colour[link] = 2;
+  };
+  for (const auto& [link, unused] : children)
+    if (colour[link] == 0) visit(link);
+}
+
+/// urdfdom's links own their children (shared_ptr): a model whose links form a cycle would
+/// never be freed. Cutting every link's child lists when the model is no longer needed frees
+/// it whatever its shape.
 struct CutModelOnExit {
   const urdf::ModelInterfaceSharedPtr& model;
   ~CutModelOnExit() {
@@ -129,6 +164,7 @@ struct CutModelOnExit {
 
 Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, const std::string& source) {
   require_utf8_text(urdf, source);
+  require_acyclic_joints(urdf, source);
   // urdfdom logs parse problems on stderr through console_bridge; fvx says it once, below.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf);

@@ -91,7 +91,7 @@ TEST(Hardening, AUrdfWhoseLinksFormACycleIsRefused) {
     <joint name="j3" type="revolute"><parent link="c"/><child link="b"/><axis xyz="0 1 0"/>
       <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>)";
   expect_one_line(run_fvx(dir, "capmap build cycle.urdf --base a --tip c -o c.fcm", "timeout 60"), 1,
-                  "the links above c form a cycle");
+                  "cycle.urdf: the joints' links form a cycle (through link 'b')");
   EXPECT_FALSE(std::filesystem::exists(dir / "c.fcm"));
 }
 
