@@ -10,6 +10,10 @@
 #                                 it must fail, which shows the job fails when it should
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ $# -gt 1 ] || { [ $# -eq 1 ] && [ "$1" != "--proof" ]; }; then
+  echo "sanitize.sh: unknown argument '$*'; usage: scripts/sanitize.sh [--proof]" >&2
+  exit 2
+fi
 if [ -n "${FVX_REAL_DATA:-}" ] && [ -d "$FVX_REAL_DATA" ]; then
   FVX_REAL_DATA="$(cd "$FVX_REAL_DATA" && pwd)"
 fi

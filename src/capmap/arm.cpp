@@ -10,9 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <set>
 #include <map>
-#include <functional>
 #include <sstream>
 
 #include "fvx/core/atomic_file.hpp"
@@ -124,26 +122,32 @@ void require_acyclic_joints(const std::string& urdf, const std::string& source) 
   document.Parse(urdf.c_str());
   const TiXmlElement* robot = document.FirstChildElement("robot");
   if (document.Error() || !robot) return;  // urdfdom refuses it without linking anything
-  std::map<std::string, std::set<std::string>> children;  // parent link -> child links
+  // Kahn's order over parent -> child links: a link whose parents are never all taken lies
+  // on a cycle or below one.
+  // (Iterative: a chain of many thousand joints must not deepen the stack.)
+  std::map<std::string, std::vector<std::string>> children;
+  std::map<std::string, int> parents;
   for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
     const TiXmlElement* parent = j->FirstChildElement("parent");
     const TiXmlElement* child = j->FirstChildElement("child");
     const char* p = parent ? parent->Attribute("link") : nullptr;
     const char* c = child ? child->Attribute("link") : nullptr;
-    if (p && c) children[p].insert(c);
+    if (!p || !c) continue;
+    children[p].push_back(c);
+    ++parents[c];
+    parents.emplace(p, 0);
   }
-  // Depth-first search with colours: a link met again while on the path closes a cycle.
-  std::map<std::string, int> colour;  // 0 unseen, 1 on the path, 2 done
-  std::function<void(const std::string&)> visit = [&](const std::string& link) {
-    colour[link] = 1;
-    for (const std::string& c : children[link]) {
-      if (colour[c] == 1) throw FileError(source, "the joints' links form a cycle (through link '" + c + "')");
-      if (colour[c] == 0) visit(c);
-    }
-    colour[link] = 2;
-  };
-  for (const auto& [link, unused] : children)
-    if (colour[link] == 0) visit(link);
+  std::vector<std::string> free_links;
+  for (const auto& [link, count] : parents)
+    if (count == 0) free_links.push_back(link);
+  while (!free_links.empty()) {
+    const std::string link = free_links.back();
+    free_links.pop_back();
+    for (const std::string& c : children[link])
+      if (--parents[c] == 0) free_links.push_back(c);
+  }
+  for (const auto& [link, count] : parents)
+    if (count > 0) throw FileError(source, "the joints' links form a cycle (through link '" + link + "')");
 }
 
 /// urdfdom's links own their children (shared_ptr): a model whose links form a cycle would
@@ -181,9 +185,8 @@ Arm Arm::from_urdf_string(const std::string& urdf, const ArmConfig& config, cons
     const auto parent = link->getParent();
     if (!parent || !link->parent_joint)
       throw UsageError("--tip " + config.tip_link + " is not below --base " + config.base_link + " in " + source);
-    // A link with two parent joints can close a loop that urdfdom accepts: the walk would not end.
-    if (joints.size() >= model->links_.size())
-      throw FileError(source, "the links above " + config.tip_link + " form a cycle (a link with two parent joints)");
+    // Parent links cannot loop: they follow joints backwards, and require_acyclic_joints refused
+    // any cycle of joints.
     joints.insert(joints.begin(), link->parent_joint);
     link = parent;
   }

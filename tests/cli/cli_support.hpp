@@ -22,15 +22,17 @@ struct RunResult {
 /// allocates what a lying header claims fails the test instead of the machine. Under
 /// AddressSanitizer (scripts/sanitize.sh), whose shadow memory needs terabytes of address
 /// space, ASAN_OPTIONS' max_allocation_size_mb caps it instead.
-inline std::string memory_limit() {
-#if defined(__SANITIZE_ADDRESS__)
-  return "";
-#elif defined(__has_feature)
+#if defined(__has_feature)
 #if __has_feature(address_sanitizer)
-  return "";
-#else
-  return "ulimit -v 4000000; ";
+#define FVX_TEST_UNDER_ASAN 1
 #endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define FVX_TEST_UNDER_ASAN 1
+#endif
+inline std::string memory_limit() {
+#ifdef FVX_TEST_UNDER_ASAN
+  return "";
 #else
   return "ulimit -v 4000000; ";
 #endif
