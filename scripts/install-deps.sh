@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config jq time gnuplot-nox
   libpcl-dev liboctomap-dev libeigen3-dev libopencv-dev nlohmann-json3-dev
   libcgal-dev libembree-dev liburdfdom-dev libtinyxml-dev liborocos-kdl-dev libnanoflann-dev
+  librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libtf2-dev  # ROS 1 bags, without ROS
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-dev llvm  # scripts/sanitize.sh and scripts/fuzz.sh: ASan, UBSan, libFuzzer, symbolizer
 )

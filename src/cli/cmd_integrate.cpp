@@ -23,7 +23,7 @@ const registration::Config kReg;
 
 const CommandSpec kIntegrateSpec = {
     "integrate",
-    "-o MAP.bt|MAP.ot [options] SCAN...",
+    "-o MAP.bt|MAP.ot [options] SCAN... | --bag FILE --topic T --fixed-frame F",
     "integrate recorded scans (PCD, PLY, depth images) into an OctoMap",
     options({{
         {"output", 'o', "FILE", "map to write, .bt or .ot (required; written atomically)", "-"},
@@ -40,12 +40,10 @@ const CommandSpec kIntegrateSpec = {
          dflt(kFilter.voxel_m) + ": off", in(0, 10)},
         {"pose", 0, "x,y,z,qx,qy,qz,qw", "pose prior T_world_sensor for every scan (metres, "
                                          "quaternion scalar-last)", "/config/pose"},
-        {"trajectory", 't', "FILE", "pose priors from a TUM (stamp tx ty tz qx qy qz qw, or "
-                                    "without stamp) or Redwood .log file", "/inputs/trajectory"},
-        max_time_diff_option(),
         {"ignore-viewpoint", 0, nullptr, "do not use the PCD VIEWPOINT as pose (legacy OpenNI "
-                                         "captures)", "/config/use_viewpoint"},
-    }, intrinsics_options(false, "/config/intrinsics"), {
+                                         "captures): without a trajectory the points are in the world frame",
+         "/config/use_viewpoint"},
+    }, trajectory_options(false), bag_options(), intrinsics_options(false, "/config/intrinsics"), {
         {"register", 0, nullptr, "align each scan to the map before integrating it (default)",
          "/config/register_scans"},
         {"no-register", 0, nullptr, "integrate scans at their pose priors, without registration",
@@ -77,6 +75,7 @@ struct Options {
   registration::Config reg;
   bool timing = false, progress = false;
   std::vector<std::string> scans;
+  std::optional<io::BagQuery> bag;
 };
 
 Options parse(const Args& args) {
@@ -98,8 +97,7 @@ Options parse(const Args& args) {
   if (args.has("pose") && args.has("trajectory"))
     throw UsageError("fvx integrate: give --pose or --trajectory, not both");
   if (args.has("pose")) o.load.pose = parse_pose(args.get("pose"), "--pose");
-  if (args.has("trajectory")) o.load.trajectory_path = args.get("trajectory");
-  args.read("max-time-diff", o.load.max_time_diff_s);
+  read_trajectory_options(args, o.load);
   o.load.use_viewpoint = !args.has("ignore-viewpoint");
 
   o.load.intrinsics = parse_intrinsics(args, "integrate");
@@ -115,7 +113,8 @@ Options parse(const Args& args) {
   o.timing = args.has("timing");
   o.progress = args.has("progress");
   o.scans = args.positional;
-  if (o.scans.empty()) throw UsageError("fvx integrate: no scans given (see 'fvx integrate --help')");
+  o.bag = read_bag_options(args, o.load.intrinsics);
+  if (o.scans.empty() && !o.bag) throw UsageError("fvx integrate: no scans given (see 'fvx integrate --help')");
   return o;
 }
 
@@ -162,8 +161,9 @@ int run_integrate(const Args& args) {
   report["inputs"] = {{"map", o.map_path.empty() ? Json(nullptr) : Json(o.map_path)},
                       {"trajectory", o.load.trajectory_path.empty() ? Json(nullptr) : Json(o.load.trajectory_path)},
                       {"scans", o.scans}};
+  report["inputs"].update(bag_inputs_json(o.bag));
 
-  scan::ScanPlan plan = scan::plan_scans(o.scans, o.load);
+  scan::ScanPlan plan = o.bag ? scan::plan_bag(*o.bag) : scan::plan_scans(o.scans, o.load);
   std::vector<std::string> warnings = plan.warnings;
   report["inputs"]["pose_match"] = scan::to_string(plan.match);
 

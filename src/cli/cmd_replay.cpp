@@ -24,7 +24,7 @@ constexpr int kFirstView = 1;  ///< --from: views are reported from the first, 1
 
 const CommandSpec kReplaySpec = {
     "replay",
-    "SESSION/ -o OUT/ | --tum DIR -o OUT/ | --scans 'GLOB' --trajectory FILE -o OUT/ [options]",
+    "SESSION/ | --tum DIR | --scans 'GLOB' [--trajectory FILE|DIR] | --bag FILE --topic T --fixed-frame F; -o OUT/ [options]",
     "a recorded session offline: per scan integrate, voids, next best view; the paper's per-view table",
     options({{
                  {"output", 'o', "DIR", "per-view maps, reports and the volume plot (must not exist or be empty)", "-"},
@@ -34,9 +34,10 @@ const CommandSpec kReplaySpec = {
                                              "naming the depth images, relative to DIR", "/inputs/associations"},
                  {"scans", 0, "GLOB", "the scans (PCD, PLY, depth images) in file-name order; quote the pattern",
                   "/inputs/scans"},
-                 {"trajectory", 't', "FILE", "pose priors for --scans or --tum: TUM (stamp tx ty tz qx qy qz qw, "
-                                             "or without stamp) or Redwood .log", "/inputs/trajectory"},
-                 max_time_diff_option(),
+             },
+             trajectory_options(true),
+             bag_options(),
+             {
                  {"from", 0, "N", "first view reported, 1-based", "/config/first_view",
                   dflt(kFirstView) + "; earlier views are still replayed", in(1, 1e6)},
                  {"to", 0, "N", "last view replayed, 1-based (default: all)", "/config/last_view", "", in(1, 1e6)},
@@ -80,9 +81,10 @@ struct Inputs {
   std::vector<session::RecordedScan> scans;
   std::string source;
   /// What the report's inputs echo of the files named (null: not a recording's).
-  Json files = {{"tum", nullptr}, {"associations", nullptr}, {"scans", nullptr}, {"trajectory", nullptr}};
+  Json files = {{"tum", nullptr}, {"associations", nullptr}, {"scans", nullptr}, {"trajectory", nullptr},
+                {"bag", nullptr}, {"topic", nullptr}, {"fixed_frame", nullptr}, {"frame", nullptr}};
   std::string capmap_path, arm_path;  ///< the arm's files, when there is one
-  double max_time_diff_s = scan::LoadConfig{}.max_time_diff_s;  ///< stamps matched within
+  scan::LoadConfig load;              ///< how scan files are read and posed
 };
 
 /// A session: the loop's settings as recorded (flags go on top later), the arm from its
@@ -114,50 +116,44 @@ Inputs recorded_inputs(const Args& args, bool arm_flags, session::ReplayConfig& 
   Inputs in;
   nc.sensor = parse_depth_camera(args, "replay");
   std::vector<std::string> paths;
-  scan::LoadConfig load;
+  scan::LoadConfig& load = in.load;
+  read_trajectory_options(args, load);
   if (args.has("tum")) {
-    const std::filesystem::path tum = args.get("tum");
-    paths = scan::tum_depth_images(tum.string(), args.has("associations") ? args.get("associations") : "");
-    load.trajectory_path = args.has("trajectory") ? args.get("trajectory") : (tum / "groundtruth.txt").string();
-    if (!std::filesystem::exists(load.trajectory_path))
-      throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
-    // TUM depth images store 5000 units per metre.
-    if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;
-    in.source = tum.string();
-  } else {
+    paths = scan::tum_recording(args.get("tum"), args.has("associations") ? args.get("associations") : "", load);
+    if (!args.has("depth-scale")) nc.sensor.intrinsics.depth_scale = 5000;  // TUM's depth units per metre
+    in.source = args.get("tum");
+  } else if (args.has("scans")) {
     paths = scan::expand_glob(args.get("scans"), "fvx replay: --scans");
-    load.trajectory_path = args.get("trajectory");
+    // Without --trajectory, each scan's own pose (scan::load_scan's rule).
     in.source = args.get("scans");
   }
   load.intrinsics = nc.sensor.intrinsics;
-  load.max_time_diff_s = in.max_time_diff_s = args.number("max-time-diff", in.max_time_diff_s);
   std::vector<std::string> warnings;
-  in.scans = session::recorded_scans(paths, load, warnings);
+  const std::optional<io::BagQuery> bag = read_bag_options(args, std::nullopt);  // intrinsics from CameraInfo
+  if (bag) in.source = bag->path;
+  in.scans = bag ? session::recorded_scans(scan::plan_bag(*bag), load) : session::recorded_scans(paths, load, warnings);
   for (const auto& warning : warnings) std::cerr << "fvx replay: warning: " << warning << "\n";
   pc.register_scans = !args.has("no-register");
   nc.strategy = nbv::Strategy::FrontierVoid;
   if (arm_flags) load_arm_inputs(args, "fvx replay", arm_inputs);  // else a free-flying sensor
   if (args.has("capmap")) in.capmap_path = args.get("capmap");
   if (args.has("arm")) in.arm_path = args.get("arm");
-  in.files = {{"tum", args.has("tum") ? Json(args.get("tum")) : Json(nullptr)},
-              {"associations", args.has("associations") ? Json(args.get("associations")) : Json(nullptr)},
-              {"scans", args.has("scans") ? Json(args.get("scans")) : Json(nullptr)},
-              {"trajectory", load.trajectory_path}};
+  for (const char* key : {"tum", "associations", "scans"}) in.files[key] = args.has(key) ? Json(args.get(key)) : Json(nullptr);
+  in.files["trajectory"] = load.trajectory_path.empty() ? Json(nullptr) : Json(load.trajectory_path);
+  in.files.update(bag_inputs_json(bag));
   return in;
 }
 
 /// The options that pick and qualify the input: one source, what goes with which, an output
 /// folder that is new or empty. Returns whether --capmap or --no-capmap was given.
 bool check_input_options(const Args& args) {
-  const int sources = int(args.positional.size() == 1) + int(args.has("tum")) + int(args.has("scans"));
+  const int sources = int(args.positional.size() == 1) + int(args.has("tum")) + int(args.has("scans")) + int(args.has("bag"));
   if (sources != 1 || args.positional.size() > 1)
-    throw UsageError("fvx replay: give one input: a session directory, --tum DIR or --scans GLOB");
+    throw UsageError("fvx replay: give one input: a session directory, --tum DIR, --scans GLOB or --bag FILE");
   if (!args.has("output")) throw UsageError("fvx replay: -o/--output DIR is required");
   if (args.has("register") && args.has("no-register"))
     throw UsageError("fvx replay: --register and --no-register contradict each other");
   if (args.has("associations") && !args.has("tum")) throw UsageError("fvx replay: --associations goes with --tum");
-  if (args.has("scans") && !args.has("trajectory"))
-    throw UsageError("fvx replay: --scans needs --trajectory (the logged poses)");
   if (args.positional.size() == 1 && args.has("trajectory"))
     throw UsageError("fvx replay: a session has its poses in its manifest; --trajectory goes with --scans or --tum");
   // The arm: --capmap or --no-capmap; without either, a session's own, else free-flying.
@@ -258,7 +254,8 @@ int run_replay(const Args& args) {
     Json report = new_report("replay");
     report["config"] = session::config_json(config);
     report["config"]["first_view"] = from;
-    report["config"]["max_time_diff_s"] = inputs.max_time_diff_s;
+    report["config"]["max_time_diff_s"] = inputs.load.max_time_diff_s;
+    report["config"]["pose_format"] = io::to_string(inputs.load.pose_format);
     report["inputs"] = {{"source", inputs.source}, {"views", scans.size()}};
     report["inputs"].update(inputs.files);
     report["inputs"]["capmap"] = arm_json(inputs.capmap_path, inputs.arm_path, arm_inputs);

@@ -12,6 +12,7 @@
 
 #include "fvx/io/cloud_file.hpp"
 #include "fvx/io/depth_image.hpp"
+#include "fvx/io/rosbag.hpp"
 #include "fvx/io/visual.hpp"
 #include "fvx/registration/registration.hpp"
 
@@ -26,7 +27,7 @@ struct Failure {
 };
 
 /// Bumped whenever an entry's signature or a type it passes changes.
-constexpr int kAbiVersion = 1;
+constexpr int kAbiVersion = 2;
 
 struct Api {
   int abi_version;
@@ -48,6 +49,8 @@ struct Api {
   void (*align)(Failure&, const std::vector<Eigen::Vector3d>& points_sensor,
                 const Eigen::Isometry3d& T_world_sensor_prior, const std::vector<Eigen::Vector3f>& target_world,
                 const registration::Config& config, registration::Result& out);
+  void (*index_bag)(Failure&, const io::BagQuery& query, std::vector<io::BagMessage>& out);
+  void (*read_bag_scan)(Failure&, const io::BagQuery& query, const io::BagMessage& message, io::BagScan& out);
 };
 
 /// The module's one exported symbol.

@@ -134,6 +134,18 @@ void write_line_plot_png(const std::string& path, const std::string& title, cons
   call<&Api::write_line_plot_png>(path, title, x_label, y_label, series, width_px, height_px);
 }
 
+std::vector<BagMessage> index_bag(const BagQuery& query) {
+  std::vector<BagMessage> out;
+  call<&Api::index_bag>(query, out);
+  return out;
+}
+
+BagScan read_bag_scan(const BagQuery& query, const BagMessage& message) {
+  BagScan out;
+  call<&Api::read_bag_scan>(query, message, out);
+  return out;
+}
+
 }  // namespace fvx::io
 
 namespace fvx::registration {

@@ -63,6 +63,12 @@ const Api kApi = {
        registration::Result& out) {
       guarded(f, [&] { out = registration::align(points_sensor, T_world_sensor_prior, target_world, config); });
     },
+    [](Failure& f, const io::BagQuery& query, std::vector<io::BagMessage>& out) {
+      guarded(f, [&] { out = io::index_bag(query); });
+    },
+    [](Failure& f, const io::BagQuery& query, const io::BagMessage& message, io::BagScan& out) {
+      guarded(f, [&] { out = io::read_bag_scan(query, message); });
+    },
 };
 
 }  // namespace

@@ -36,9 +36,10 @@ CloudFile read_cloud(const std::string& path) {
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
   int result = -1;
+  bool viewpoint_stated = false;
   try {
     if (ext == ".pcd") {
-      check_pcd_header(path);  // before PCL allocates what the header claims
+      viewpoint_stated = check_pcd_header(path);  // before PCL allocates what the header claims
       int version = 0, data_type = 0;
       unsigned data_index = 0;
       pcl::PCDReader reader;
@@ -48,7 +49,7 @@ CloudFile read_cloud(const std::string& path) {
         throw FileError(path, "corrupt PCD header (no FIELDS, or a malformed line)");
       result = reader.read(path, blob, origin, orientation, version);
     } else if (ext == ".ply") {
-      check_ply_header(path);
+      viewpoint_stated = check_ply_header(path);
       int version = 0;
       pcl::PLYReader reader;
       result = reader.read(path, blob, origin, orientation, version);
@@ -81,6 +82,7 @@ CloudFile read_cloud(const std::string& path) {
     throw FileError(path, "VIEWPOINT is not a finite pose");
   file.viewpoint = Eigen::Isometry3d(q.normalized());
   file.viewpoint.pretranslate(origin.head<3>().cast<double>());
+  file.viewpoint_stated = viewpoint_stated;
   return file;
 }
 

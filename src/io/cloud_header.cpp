@@ -41,6 +41,7 @@ struct PcdHeader {
   std::vector<std::string> fields, sizes, types, counts;
   long long width = -1, height = -1, points = -1;
   std::string data;
+  bool viewpoint = false;  ///< a VIEWPOINT line was read
   std::size_t values_per_point = 0, point_bytes = 0;
 };
 
@@ -87,7 +88,7 @@ PcdHeader read_pcd_header(const std::string& path, std::istream& in) {
     else if (key == "WIDTH") h.width = count_of(path, "WIDTH", t[0]);
     else if (key == "HEIGHT") h.height = count_of(path, "HEIGHT", t[0]);
     else if (key == "POINTS") h.points = count_of(path, "POINTS", t[0]);
-    else if (key == "VIEWPOINT") check_viewpoint(path, line, t);
+    else if (key == "VIEWPOINT") check_viewpoint(path, line, t), h.viewpoint = true;
     else h.data = t[0], data_at = in.eof() ? std::streamoff(std::filesystem::file_size(path)) : std::streamoff(in.tellg());
   }
   if (data_at < 0) throw FileError(path, "corrupt PCD header: no DATA line");
@@ -196,7 +197,7 @@ struct PlyElement {
 
 }  // namespace
 
-void check_ply_header(const std::string& path) {
+bool check_ply_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line, format;
   std::vector<PlyElement> elements;
@@ -231,9 +232,11 @@ void check_ply_header(const std::string& path) {
                               (elements.empty() ? std::string("no element") : "element " + elements.front().name + " " +
                                                   std::to_string(elements.front().count)) +
                               "), the file holds " + std::to_string(left));
+  // PCL's PLY writer stores the sensor pose as one "camera" element (view_p*, *_axis*).
+  return std::any_of(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "camera" && e.count == 1; });
 }
 
-void check_pcd_header(const std::string& path) {
+bool check_pcd_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   PcdHeader h = read_pcd_header(path, in);
   check_pcd_fields(path, h);
@@ -241,6 +244,7 @@ void check_pcd_header(const std::string& path) {
   if (h.data == "ascii") check_pcd_ascii(path, h, in, left);
   else if (h.data == "binary" || h.data == "binary_compressed") check_pcd_binary(path, h, in, left);
   else throw FileError(path, "DATA " + h.data + ": expected ascii, binary or binary_compressed");
+  return h.viewpoint;
 }
 
 }  // namespace fvx::io

@@ -7,6 +7,7 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/parse.hpp"
 
 namespace fvx::io {
 
@@ -29,6 +30,8 @@ std::vector<std::string> Intrinsics::validate() const {
 }
 
 namespace {
+
+constexpr std::size_t kMaxMatrixTextBytes = 4096;  ///< a 4x4 matrix in text is a few hundred bytes
 
 double number(const nlohmann::json& j, const char* key, const std::string& path) {
   if (!j.contains(key)) throw FileError(path, std::string("missing key '") + key + "'");
@@ -84,9 +87,50 @@ Intrinsics intrinsics_from_json(const nlohmann::json& j, const std::string& path
   return k;
 }
 
+/// A text file of 9 numbers (a 3x3 K: 3DMatch's camera-intrinsics.txt) or 16 (a 4x4 with K
+/// top left: ScanNet's intrinsic_depth.txt), row-major, without skew.
+Intrinsics intrinsics_from_matrix_text(const std::string& text, const std::string& path) {
+  std::vector<double> v;
+  for (const std::string& token : split_whitespace(text)) {
+    if (v.size() == 16) throw FileError(path, "expected a 3x3 or 4x4 intrinsic matrix: more than 16 numbers");
+    try {
+      v.push_back(parse_double(token, path));
+    } catch (const UsageError& e) {
+      throw Error(e.what());  // names the file
+    }
+  }
+  if (v.size() != 9 && v.size() != 16)
+    throw FileError(path, "expected a 3x3 or 4x4 intrinsic matrix (9 or 16 numbers), got " + std::to_string(v.size()));
+  const std::size_t n = v.size() == 9 ? 3 : 4;
+  auto at = [&](std::size_t r, std::size_t c) { return v[r * n + c]; };
+  bool pinhole = at(0, 1) == 0 && at(1, 0) == 0 && at(2, 0) == 0 && at(2, 1) == 0 && at(2, 2) == 1;
+  if (n == 4) pinhole = pinhole && at(0, 3) == 0 && at(1, 3) == 0 && at(2, 3) == 0 && at(3, 0) == 0 && at(3, 1) == 0 &&
+                        at(3, 2) == 0 && at(3, 3) == 1;
+  if (!pinhole)
+    throw FileError(path, "not a pinhole matrix: expected fx 0 cx / 0 fy cy / 0 0 1 (no skew; a 4x4 with 0 0 0 1 around it)");
+  Intrinsics k;
+  k.fx = at(0, 0);
+  k.fy = at(1, 1);
+  k.cx = at(0, 2);
+  k.cy = at(1, 2);
+  const auto problems = k.validate();
+  if (!problems.empty()) throw FileError(path, join_problems(problems));
+  return k;
+}
+
 }  // namespace
 
-Intrinsics read_intrinsics(const std::string& path) { return intrinsics_from_json(read_json_object(path), path); }
+Intrinsics read_intrinsics(const std::string& path) {
+  require_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string text(kMaxMatrixTextBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(std::size_t(in.gcount()));
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '{') return intrinsics_from_json(read_json_object(path), path);
+  if (text.size() > kMaxMatrixTextBytes) throw FileError(path, "neither JSON nor a 3x3 or 4x4 intrinsic matrix (too long)");
+  return intrinsics_from_matrix_text(text, path);
+}
 
 std::vector<std::string> DepthCamera::validate() const {
   std::vector<std::string> problems = intrinsics.validate();

@@ -2,6 +2,8 @@
 
 #include <tuple>
 
+#include <nlohmann/json.hpp>
+
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/io/camera_options.hpp"
@@ -16,6 +18,58 @@ OptionSpec resolution_option(const std::string& echo, const char* help, const st
 OptionSpec max_time_diff_option() {
   return {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, seconds",
           "/config/max_time_diff_s", dflt(scan::LoadConfig{}.max_time_diff_s), in(0, 1e6)};
+}
+
+std::vector<OptionSpec> trajectory_options(bool replay) {
+  const char* help = replay ? "pose priors for --scans (default: each scan's own, e.g. a PCD's VIEWPOINT) or --tum: "
+                              "a TUM (stamp tx ty tz qx qy qz qw, or without stamp), Redwood .log or KITTI file, "
+                              "or a folder of per-frame 4x4 pose files (frame-XXXXXX.pose.txt, ScanNet's N.txt)"
+                            : "pose priors: a TUM (stamp tx ty tz qx qy qz qw, or without stamp), Redwood .log or "
+                              "KITTI file, or a folder of per-frame 4x4 pose files (frame-XXXXXX.pose.txt, "
+                              "ScanNet's N.txt)";
+  return {{"trajectory", 't', "FILE|DIR", help, "/inputs/trajectory"},
+          {"pose-format", 0, "NAME", "the --trajectory file's format: auto (by the file: a folder of "
+                                     "per-frame 4x4 files, .log Redwood, 7 or 8 fields TUM, 12 KITTI), tum, "
+                                     "redwood or kitti (3x4 rows)", "/config/pose_format", "auto"},
+          max_time_diff_option()};
+}
+
+std::vector<OptionSpec> bag_options() {
+  return {{"bag", 0, "FILE", "scans from a ROS 1 bag: --topic's PointCloud2 or depth Image (+ its CameraInfo), "
+                             "posed by the bag's /tf and /tf_static", "/inputs/bag"},
+          {"topic", 0, "NAME", "with --bag: the scans' topic", "/inputs/topic"},
+          {"fixed-frame", 0, "NAME", "with --bag: the world frame of the poses (e.g. odom or map)", "/inputs/fixed_frame"},
+          {"frame", 0, "NAME", "with --bag: the scans' frame, instead of each message's header.frame_id",
+           "/inputs/frame"}};
+}
+
+std::optional<io::BagQuery> read_bag_options(const Args& args, const std::optional<io::Intrinsics>& intrinsics) {
+  if (!args.has("bag")) {
+    for (const char* name : {"topic", "fixed-frame", "frame"})
+      if (args.has(name)) throw UsageError(std::string("--") + name + " goes with --bag");
+    return std::nullopt;
+  }
+  if (!args.positional.empty()) throw UsageError("give scan files (or a session) or --bag, not both");
+  if (!args.has("topic") || !args.has("fixed-frame"))
+    throw UsageError("--bag needs --topic (the scans) and --fixed-frame (the world frame of their poses)");
+  for (const char* name : {"trajectory", "pose", "pose-format"})
+    if (args.has(name)) throw UsageError(std::string("--") + name + ": a bag's scans are posed by its TF, not by --" + name);
+  io::BagQuery query{args.get("bag"), args.get("topic"), args.get("fixed-frame"), "", intrinsics};
+  if (args.has("frame")) query.sensor_frame = args.get("frame");
+  return query;
+}
+
+Json bag_inputs_json(const std::optional<io::BagQuery>& query) {
+  if (!query) return {{"bag", nullptr}, {"topic", nullptr}, {"fixed_frame", nullptr}, {"frame", nullptr}};
+  return {{"bag", query->path}, {"topic", query->topic}, {"fixed_frame", query->fixed_frame},
+          {"frame", query->sensor_frame.empty() ? Json(nullptr) : Json(query->sensor_frame)}};
+}
+
+void read_trajectory_options(const Args& args, scan::LoadConfig& load) {
+  if (args.has("pose-format") && !args.has("trajectory")) throw UsageError("--pose-format goes with --trajectory");
+  if (args.has("trajectory")) load.trajectory_path = args.get("trajectory");
+  if (args.has("pose-format")) load.pose_format = io::parse_pose_format(args.get("pose-format"), "--pose-format");
+  args.read("max-time-diff", load.max_time_diff_s);
 }
 
 OptionSpec min_fit_score_option(const std::string& echo, const char* help) {

@@ -10,6 +10,7 @@ Json integrate_config_json(const pipeline::Config& config, const scan::LoadConfi
   Json c = pipeline::config_json(config);
   c["pose"] = load.pose ? pose_json(*load.pose) : Json(nullptr);
   c["use_viewpoint"] = load.use_viewpoint;
+  c["pose_format"] = io::to_string(load.pose_format);
   c["max_time_diff_s"] = load.max_time_diff_s;
   c["intrinsics"] = load.intrinsics ? io::intrinsics_json(*load.intrinsics) : Json(nullptr);
   const map::SensorModel model = map.sensor_model();

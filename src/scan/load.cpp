@@ -22,6 +22,8 @@ const char* to_string(PoseMatch match) {
     case PoseMatch::ByOrder: return "order";
     case PoseMatch::ByTimestamp: return "timestamp";
     case PoseMatch::ByFrameId: return "frame-id";
+    case PoseMatch::ByFrameName: return "frame-name";
+    case PoseMatch::ByTf: return "tf";
   }
   return "?";
 }
@@ -72,6 +74,18 @@ void match_by_frame_id(ScanPlan& plan, const io::Trajectory& trajectory, const s
   }
 }
 
+void match_by_frame_name(ScanPlan& plan, const io::Trajectory& trajectory, const std::string& dir) {
+  plan.match = PoseMatch::ByFrameName;
+  for (auto& scan : plan.scans) {
+    const std::string name = io::frame_name(scan.path);
+    const auto it = std::find_if(trajectory.entries.begin(), trajectory.entries.end(),
+                                 [&](const io::TrajectoryEntry& e) { return e.frame_name == name; });
+    if (it == trajectory.entries.end())
+      throw Error(dir + ": no pose file for frame '" + name + "' (scan " + scan.path + ")");
+    scan.T_world_sensor = it->T_world_sensor;
+  }
+}
+
 void match_by_stamp(ScanPlan& plan, const io::Trajectory& trajectory, const std::string& path,
                     double max_time_diff_s) {
   plan.match = PoseMatch::ByTimestamp;
@@ -88,17 +102,31 @@ void match_by_stamp(ScanPlan& plan, const io::Trajectory& trajectory, const std:
   }
 }
 
+UsageError needs_intrinsics(const std::string& path) {
+  return UsageError(path + ": a depth image needs intrinsics (--intrinsics FILE or --fx/--fy/--cx/--cy)");
+}
+
+FileError no_pose(const std::string& path) {
+  return FileError(path, std::string("no pose: ") +
+                             (io::is_depth_image_path(path) ? "a depth image states none"
+                                                            : "the file states none (no PCD VIEWPOINT, no PLY camera element)") +
+                             "; give --trajectory, or --pose (0,0,0,0,0,0,1: the sensor frame)");
+}
+
 }  // namespace
 
 ScanPlan plan_scans(const std::vector<std::string>& paths, const LoadConfig& config) {
   ScanPlan plan;
-  for (const auto& p : paths) plan.scans.push_back({p, std::nullopt, PoseSource::Identity});
+  for (const auto& p : paths) plan.scans.push_back({p, std::nullopt, PoseSource::Identity, std::nullopt});
   if (!config.trajectory_path.empty()) {
-    const io::Trajectory trajectory = io::read_trajectory(config.trajectory_path);
+    const io::Trajectory trajectory = io::read_trajectory(config.trajectory_path, config.pose_format);
     const auto& tp = config.trajectory_path;
     const bool integral_stems =
         all_stems(paths, [](double v) { return v >= 0 && v == std::floor(v); });
-    if (trajectory.format == io::TrajectoryFormat::RedwoodLog && integral_stems)
+    const bool by_id = trajectory.format == io::TrajectoryFormat::RedwoodLog || trajectory.format == io::TrajectoryFormat::Kitti;
+    if (trajectory.format == io::TrajectoryFormat::PoseFiles)
+      match_by_frame_name(plan, trajectory, tp);
+    else if (by_id && integral_stems)
       match_by_frame_id(plan, trajectory, tp);
     else if (trajectory.format == io::TrajectoryFormat::Tum && all_stems(paths, [](double) { return true; }))
       match_by_stamp(plan, trajectory, tp, config.max_time_diff_s);
@@ -110,18 +138,55 @@ ScanPlan plan_scans(const std::vector<std::string>& paths, const LoadConfig& con
       s.T_world_sensor = *config.pose;
       s.pose_source = PoseSource::Flag;
     }
+  } else {
+    // A depth image never states its pose: say so before the first scan is integrated.
+    for (const auto& p : paths) {
+      if (!io::is_depth_image_path(p)) continue;
+      if (!config.intrinsics) throw needs_intrinsics(p);  // the first thing to fix
+      throw no_pose(p);
+    }
   }
   return plan;
 }
 
-Scan load_scan(const ScanSource& source, const LoadConfig& config,
-               std::vector<std::string>& warnings) {
+ScanPlan plan_bag(const io::BagQuery& query) {
+  ScanPlan plan;
+  plan.match = PoseMatch::ByTf;
+  for (const io::BagMessage& m : io::index_bag(query))
+    plan.scans.push_back({io::bag_message_name(query, m), m.T_fixed_sensor, PoseSource::Tf, std::pair{query, m}});
+  return plan;
+}
+
+namespace {
+
+/// A bag message's points in its frame: a cloud's, or its depth image back-projected.
+Scan load_bag_scan(const ScanSource& source) {
+  const auto& [query, message] = *source.bag;
+  io::BagScan data = io::read_bag_scan(query, message);
   Scan scan;
   scan.source = source.path;
-  std::optional<Eigen::Isometry3d> viewpoint;
-  if (io::is_depth_image_path(source.path)) {
-    if (!config.intrinsics)
-      throw UsageError(source.path + ": a depth image needs intrinsics (--intrinsics FILE or --fx/--fy/--cx/--cy)");
+  scan.points_sensor = data.depth ? backproject(*data.depth, data.intrinsics) : std::move(data.points);
+  if (data.depth && (data.depth->width != data.intrinsics.width || data.depth->height != data.intrinsics.height) &&
+      data.intrinsics.size_stated)
+    throw FileError(source.path, "the image is " + std::to_string(data.depth->width) + "x" +
+                                     std::to_string(data.depth->height) + " but the intrinsics say " +
+                                     std::to_string(data.intrinsics.width) + "x" + std::to_string(data.intrinsics.height));
+  scan.T_world_sensor = message.T_fixed_sensor;
+  scan.pose_source = PoseSource::Tf;
+  return scan;
+}
+
+}  // namespace
+
+Scan load_scan(const ScanSource& source, const LoadConfig& config,
+               std::vector<std::string>& warnings) {
+  if (source.bag) return load_bag_scan(source);
+  Scan scan;
+  scan.source = source.path;
+  std::optional<Eigen::Isometry3d> viewpoint;  // the pose the file states
+  const bool cloud = !io::is_depth_image_path(source.path);
+  if (!cloud) {
+    if (!config.intrinsics) throw needs_intrinsics(source.path);
     const io::DepthImage depth = io::read_depth_image(source.path);
     const io::Intrinsics& K = *config.intrinsics;
     // A stated size that differs means the intrinsics are another camera's (or another
@@ -132,22 +197,24 @@ Scan load_scan(const ScanSource& source, const LoadConfig& config,
                                        std::to_string(K.width) + "x" + std::to_string(K.height));
     scan.points_sensor = backproject(depth, K);
   } else {
-    io::CloudFile cloud = io::read_cloud(source.path);
-    scan.points_sensor = std::move(cloud.points);
-    viewpoint = cloud.viewpoint;
-    if (config.use_viewpoint && !source.T_world_sensor && io::is_legacy_openni_viewpoint(cloud.viewpoint))
+    io::CloudFile file = io::read_cloud(source.path);
+    scan.points_sensor = std::move(file.points);
+    if (file.viewpoint_stated) viewpoint = file.viewpoint;
+    if (config.use_viewpoint && !source.T_world_sensor && io::is_legacy_openni_viewpoint(file.viewpoint))
       warnings.push_back(source.path + ": VIEWPOINT is the legacy OpenNI 180° rotation about x; "
                          "if the points are already in the optical frame, pass --ignore-viewpoint");
   }
+  // The pose rule: a trajectory (or --pose), else the scan's own pose, else an error.
   if (source.T_world_sensor) {
     scan.T_world_sensor = *source.T_world_sensor;
     scan.pose_source = source.pose_source;
-  } else if (viewpoint && config.use_viewpoint) {
+  } else if (cloud && !config.use_viewpoint) {
+    scan.pose_source = PoseSource::Identity;  // --ignore-viewpoint: the points are in the world frame
+  } else if (viewpoint) {
     scan.T_world_sensor = *viewpoint;
     scan.pose_source = PoseSource::Viewpoint;
   } else {
-    scan.pose_source = PoseSource::Identity;
-    if (!viewpoint) warnings.push_back(source.path + ": no pose given; using the identity");
+    throw no_pose(source.path);
   }
   return scan;
 }
@@ -206,6 +273,14 @@ std::vector<std::string> tum_depth_images(const std::string& dir, const std::str
     std::sort(paths.begin(), paths.end());
   }
   if (paths.empty()) throw FileError(dir, "no depth image to replay");
+  return paths;
+}
+
+std::vector<std::string> tum_recording(const std::string& dir, const std::string& associations, LoadConfig& load) {
+  std::vector<std::string> paths = tum_depth_images(dir, associations);
+  if (load.trajectory_path.empty()) load.trajectory_path = (std::filesystem::path(dir) / "groundtruth.txt").string();
+  if (!std::filesystem::exists(load.trajectory_path))
+    throw FileError(load.trajectory_path, "no trajectory: a TUM folder holds groundtruth.txt (or give --trajectory)");
   return paths;
 }
 

@@ -14,6 +14,7 @@ const char* to_string(PoseSource source) {
     case PoseSource::Trajectory: return "trajectory";
     case PoseSource::Flag: return "flag";
     case PoseSource::Identity: return "identity";
+    case PoseSource::Tf: return "tf";
   }
   return "?";
 }

@@ -50,7 +50,7 @@ SessionRecording read_session(const std::string& dir, ReplayConfig& config) {
     r.T_world_sensor_true = v.T_world_sensor_true;
     const Eigen::Isometry3d prior = v.T_world_sensor_prior;
     r.load = [path = r.name, prior]() {
-      scan::ScanSource source{path, prior, scan::PoseSource::Trajectory};
+      scan::ScanSource source{path, prior, scan::PoseSource::Trajectory, std::nullopt};
       std::vector<std::string> warnings;
       return scan::load_scan(source, scan::LoadConfig{}, warnings);
     };
@@ -63,6 +63,10 @@ std::vector<RecordedScan> recorded_scans(const std::vector<std::string>& paths, 
                                          std::vector<std::string>& warnings) {
   const scan::ScanPlan plan = scan::plan_scans(paths, load);
   warnings.insert(warnings.end(), plan.warnings.begin(), plan.warnings.end());
+  return recorded_scans(plan, load);
+}
+
+std::vector<RecordedScan> recorded_scans(const scan::ScanPlan& plan, const scan::LoadConfig& load) {
   std::vector<RecordedScan> scans;
   for (const scan::ScanSource& source : plan.scans) {
     RecordedScan r;

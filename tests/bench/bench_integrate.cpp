@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   fvx::scan::LoadConfig load;
   load.use_viewpoint = false;  // the frame's own optical frame is the world
   std::vector<std::string> warnings;
-  fvx::scan::Scan scan = fvx::scan::load_scan({argv[1], std::nullopt, fvx::scan::PoseSource::Identity}, load, warnings);
+  fvx::scan::Scan scan = fvx::scan::load_scan({argv[1], std::nullopt, fvx::scan::PoseSource::Identity, std::nullopt}, load, warnings);
   fvx::scan::filter(scan, {});
   g_points_world = fvx::scan::to_world(scan);
   std::printf("frame %s: %zu finite points, resolution %.3f m, max range %.1f m\n", argv[1],

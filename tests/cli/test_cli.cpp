@@ -2,11 +2,15 @@
 // one-line message and no damage to existing outputs.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "fvx/core/json.hpp"
 #include "fvx/io/cloud_file.hpp"
+#include "fvx/io/trajectory.hpp"
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::test {
@@ -234,6 +238,53 @@ TEST(CliRealData, SlambookWithTheRecipeReproducesTheReference) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(json::parse(r.out)["inputs"]["pose_match"], "order");
   EXPECT_EQ(slurp(dir / "s.bt"), slurp(reference));
+}
+
+// Issue 20: the slambook frames laid out as 7-Scenes / 3DMatch do it (frame-XXXXXX.depth
+// images, one 4x4 frame-XXXXXX.pose.txt per frame, a 3x3 K in camera-intrinsics.txt)
+// integrate with the poses of the TUM trajectory the matrices were written from, matched by
+// frame name, and give the reference map.
+TEST(CliRealData, SlambookInTheSevenScenesLayoutIntegratesAsItsTrajectory) {
+  FVX_REAL_DATA_OR_SKIP(frames, "slambook-joinmap-5kf");
+  FVX_REAL_DATA_OR_SKIP(reference, "octomap-maps/slambook_ch13/octomap.bt");
+  const TempDir dir;
+  std::filesystem::create_directories(dir / "seq-01");
+  const io::Trajectory trajectory = io::read_trajectory(frames + "/pose.txt");
+  ASSERT_EQ(trajectory.entries.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "seq-01/frame-%06d", i);
+    std::filesystem::copy_file(frames + "/depth/" + std::to_string(i + 1) + ".pgm", dir / (std::string(name) + ".depth.pgm"));
+    std::ofstream pose(dir / (std::string(name) + ".pose.txt"));
+    pose << std::setprecision(17) << trajectory.entries[std::size_t(i)].T_world_sensor.matrix() << "\n";
+  }
+  std::ofstream(dir / "seq-01/camera-intrinsics.txt") << "518 0 325.5\n0 519 253.5\n0 0 1\n";
+  const RunResult r = run_fvx(dir, "integrate --trajectory seq-01/ --intrinsics seq-01/camera-intrinsics.txt -o s.bt "
+                                   "--resolution 0.05 --depth-max 7 --no-register seq-01/*.depth.pgm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(r.out);
+  EXPECT_EQ(report["inputs"]["pose_match"], "frame-name");
+  const json& scans = report["results"]["scans"];
+  ASSERT_EQ(scans.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    const json expected = pose_json(trajectory.entries[i].T_world_sensor);
+    EXPECT_EQ(scans[i]["pose_source"], "trajectory");
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(scans[i]["prior"]["position_m"][k].get<double>(), expected["position_m"][k].get<double>(), 1e-12);
+    // The file's quaternions are unit to 1e-6 and used as given; the matrix reader makes its
+    // rotations orthonormal, which moves them by up to 2e-8 here: the map is the same.
+    for (int k = 0; k < 4; ++k)
+      EXPECT_NEAR(scans[i]["prior"]["quaternion_xyzw"][k].get<double>(), expected["quaternion_xyzw"][k].get<double>(), 1e-7);
+  }
+  EXPECT_EQ(slurp(dir / "s.bt"), slurp(reference));
+  // A pose file of three rows is refused, naming the file, before any map is written.
+  std::ofstream(dir / "seq-01/frame-000002.pose.txt") << "1 0 0 0\n0 1 0 0\n0 0 1 0\n";
+  const RunResult bad = run_fvx(dir, "integrate --trajectory seq-01 --intrinsics seq-01/camera-intrinsics.txt -o t.bt "
+                                     "seq-01/*.depth.pgm");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(line_count(bad.err), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("frame-000002.pose.txt: expected a 4x4 matrix"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "t.bt"));
 }
 
 }  // namespace

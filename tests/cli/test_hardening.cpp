@@ -137,7 +137,7 @@ TEST(Hardening, CloudHeadersThatLieAreRefusedBeforeAnythingIsAllocated) {
   std::ofstream(dir / "ok.ply") << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                                    "property float z\nend_header\n1 2 3\n4 5 6\n";
   for (const char* ok : {"ok.pcd", "ok.ply"}) {
-    const RunResult r = run_fvx(dir, std::string("integrate ") + ok + " -o ok.bt");
+    const RunResult r = run_fvx(dir, std::string("integrate ") + ok + " --pose 0,0,0,0,0,0,1 -o ok.bt");
     EXPECT_EQ(r.status, 0) << ok << ": " << r.err;
   }
 }
@@ -227,7 +227,7 @@ TEST(Hardening, SaturatedDepthPixelsAreNoMeasurement) {
   };
   pgm("saturated.pgm", 0);
   pgm("forty.pgm", 40);
-  const std::string K = " --fx 525 --fy 525 --cx 319.5 --cy 239.5 -o m.bt";
+  const std::string K = " --fx 525 --fy 525 --cx 319.5 --cy 239.5 --pose 0,0,0,0,0,0,1 -o m.bt";
   expect_one_line(run_fvx(dir, "integrate saturated.pgm" + K, "timeout 60"), 1, "saturated.pgm: the scan holds no finite points");
   EXPECT_FALSE(std::filesystem::exists(dir / "m.bt"));
   const RunResult r = run_fvx(dir, "integrate forty.pgm" + K, "timeout 60");
@@ -256,7 +256,7 @@ TEST(Hardening, DepthImagesAreCheckedBeforeDecodingAndAgainstTheIntrinsics) {
       {std::string("II*\0\xff\xff\xff\x0f", 8), "TIFF directory offset 268435455 is past the end"},
       {"\xff\xd8\xff\xe0 JFIF", "not a PNG, PGM or TIFF image"},
   };
-  const std::string K = " --fx 5 --fy 5 --cx 3.5 --cy 2.5 -o m.bt";
+  const std::string K = " --fx 5 --fy 5 --cx 3.5 --cy 2.5 --pose 0,0,0,0,0,0,1 -o m.bt";
   for (const auto& [bytes, words] : cases) {
     std::ofstream(dir / "d.png", std::ios::binary) << bytes;
     expect_one_line(run_fvx(dir, "integrate d.png" + K, memory_limit() + "timeout 60"), 1, "d.png: " + words);
@@ -264,7 +264,7 @@ TEST(Hardening, DepthImagesAreCheckedBeforeDecodingAndAgainstTheIntrinsics) {
   }
   std::ofstream(dir / "d.pgm", std::ios::binary) << pgm;
   std::ofstream(dir / "k.json") << R"({"fx":525,"fy":525,"cx":319.5,"cy":239.5,"width":640,"height":480})";
-  expect_one_line(run_fvx(dir, "integrate d.pgm -K k.json -o m.bt"), 1, "d.pgm: the image is 8x6 but the intrinsics say 640x480");
+  expect_one_line(run_fvx(dir, "integrate d.pgm -K k.json --pose 0,0,0,0,0,0,1 -o m.bt"), 1, "d.pgm: the image is 8x6 but the intrinsics say 640x480");
   EXPECT_FALSE(std::filesystem::exists(dir / "m.bt"));
   const RunResult r = run_fvx(dir, "integrate d.pgm" + K);  // no size stated: the image's
   EXPECT_EQ(r.status, 0) << r.err;

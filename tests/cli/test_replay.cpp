@@ -10,8 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "fvx/io/cloud_file.hpp"
 #include "fvx/io/depth_image.hpp"
 #include "fvx/map/occupancy_map.hpp"
+#include "fvx/scan/load.hpp"
 #include "fvx/session/session.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
@@ -233,6 +235,17 @@ TEST(CliReplay, FromAndToChooseTheViews) {
 }
 
 // The session's scans as a plain list with a TUM trajectory (no stamps): the same table.
+/// Writes the poses as a TUM trajectory without stamps (frame i on line i).
+void write_poses(const std::string& path, const std::vector<Eigen::Isometry3d>& poses) {
+  std::ofstream out(path);
+  out << std::setprecision(17);
+  for (const auto& T : poses) {
+    const Eigen::Quaterniond q(T.linear());
+    const Eigen::Vector3d t = T.translation();
+    out << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+  }
+}
+
 TEST(CliReplay, ScansWithATrajectoryReplayLikeTheSession) {
   const TempDir dir;
   const json explored = record(dir)["results"]["rows"];
@@ -259,15 +272,25 @@ TEST(CliReplay, ScansWithATrajectoryReplayLikeTheSession) {
   }
 }
 
-/// Writes the poses as a TUM trajectory without stamps (frame i on line i).
-void write_poses(const std::string& path, const std::vector<Eigen::Isometry3d>& poses) {
-  std::ofstream out(path);
-  out << std::setprecision(17);
-  for (const auto& T : poses) {
-    const Eigen::Quaterniond q(T.linear());
-    const Eigen::Vector3d t = T.translation();
-    out << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
-  }
+// The pose rule (issue 20): without --trajectory a folder of PCDs replays at each file's
+// VIEWPOINT, and gives the same table as the same poses given as a trajectory.
+TEST(CliReplay, PcdScansReplayFromTheirViewpointsAsFromATrajectory) {
+  const TempDir dir;
+  record(dir);
+  std::vector<Eigen::Isometry3d> viewpoints;
+  for (const auto& scan : scan::expand_glob(dir / "session/scans/*.pcd", "scans"))
+    viewpoints.push_back(io::read_cloud(scan).viewpoint);
+  ASSERT_EQ(viewpoints.size(), 4u);
+  write_poses(dir / "viewpoints.txt", viewpoints);
+  const std::string common = " --no-register --to 3" + kArm + " --format json";
+  const RunResult own = run_fvx(dir, "replay --scans 'session/scans/*.pcd' -o own" + common);
+  const RunResult given = run_fvx(dir, "replay --scans 'session/scans/*.pcd' --trajectory viewpoints.txt -o given" + common);
+  ASSERT_EQ(own.status, 0) << own.err;
+  ASSERT_EQ(given.status, 0) << given.err;
+  const json a = json::parse(own.out)["results"]["rows"], b = json::parse(given.out)["results"]["rows"];
+  ASSERT_EQ(a.size(), 3u);
+  EXPECT_EQ(a, b);
+  EXPECT_GT(a[2]["void_cells"].get<int>(), 0);
 }
 
 /// Of the occupied cells of `a`, the share with an occupied cell of `b` within one cell.
@@ -398,6 +421,8 @@ TEST(CliReplay, BadInputIsRefusedOnOneLine) {
   record(dir);
   std::filesystem::create_directories(dir / "full");
   std::ofstream(dir / "full/keep.txt") << "keep";
+  std::filesystem::create_directories(dir / "session/d");
+  std::ofstream(dir / "session/d/0.png") << "never read";
   const std::vector<std::pair<std::string, int>> cases = {
       {"replay -o out", 2},                                               // no input
       {"replay session --scans 'x/*.pcd' --trajectory t.txt -o out", 2},  // two inputs
@@ -408,7 +433,8 @@ TEST(CliReplay, BadInputIsRefusedOnOneLine) {
       {"replay session -o out --format xml", 2},
       {"replay session -o out --trajectory t.txt", 2},
       {"replay --scans 'nothing/*.pcd' --trajectory t.txt --no-capmap -o out", 2},
-      {"replay --scans 'session/scans/*.pcd' --no-capmap -o out", 2},    // no trajectory
+      {"replay --scans 'session/d/*.png' --no-capmap -o out", 1},        // depth images state no pose
+      {"replay --scans 'session/scans/*.pcd' --pose-format kitti --no-capmap -o out", 2},  // no trajectory
       {"replay nowhere -o out", 1},                                       // not a session
       {"replay --tum nowhere --no-capmap -o out", 1},
       {"replay session -o out --base 0,0,0,0,0,0", 2},                   // --base without --capmap

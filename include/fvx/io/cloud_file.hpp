@@ -20,6 +20,8 @@ struct CloudFile {
   /// The PCD `VIEWPOINT` (or PLY `obj_info` origin/orientation) as `T_world_sensor`.
   /// Identity when the header has none.
   Eigen::Isometry3d viewpoint = Eigen::Isometry3d::Identity();
+  /// Whether the file states its pose: a PCD's VIEWPOINT line, a PLY's "camera" element.
+  bool viewpoint_stated = false;
 
   bool organised() const { return height > 1; }
 };

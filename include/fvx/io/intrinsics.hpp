@@ -32,11 +32,13 @@ struct Intrinsics {
   std::vector<std::string> validate() const;
 };
 
-/// Reads intrinsics from JSON. Two layouts are accepted:
+/// Reads intrinsics from JSON or a text matrix. The layouts accepted:
 ///  - fvx: {"fx":…, "fy":…, "cx":…, "cy":…, "depth_scale":…, "width":…, "height":…}
 ///    (depth_scale, width, height optional);
 ///  - Open3D PinholeCameraIntrinsic: {"width":…, "height":…, "intrinsic_matrix":[9 numbers,
-///    column-major]}.
+///    column-major]};
+///  - a text file of a 3x3 K (3DMatch / 7-Scenes camera-intrinsics.txt) or a 4x4 with K top
+///    left (ScanNet intrinsic_depth.txt), row-major, no skew; the size is then not stated.
 /// Unknown keys are refused (a typo must not silently fall back to a default).
 /// Throws FileError naming the file and the problem.
 Intrinsics read_intrinsics(const std::string& path);

@@ -2,12 +2,15 @@
 /// \file
 /// The options of the step's configs that several commands share, declared next to the
 /// configs they set: their table rows (with default and range) and their parsing.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "fvx/core/json.hpp"
 #include "fvx/core/options.hpp"
 #include "fvx/pipeline/pipeline.hpp"
+#include "fvx/scan/load.hpp"
 
 namespace fvx::pipeline {
 
@@ -20,6 +23,19 @@ OptionSpec resolution_option(const std::string& echo, const char* help, const st
 double parse_resolution(const Args& args, double fallback);
 /// --max-time-diff S: stamps matched within S seconds (scan::LoadConfig's default).
 OptionSpec max_time_diff_option();
+/// --trajectory FILE|DIR (for `fvx replay` or `fvx integrate`), --pose-format
+/// auto|tum|redwood|kitti (io::PoseFormatChoice) and --max-time-diff.
+std::vector<OptionSpec> trajectory_options(bool replay);
+/// --trajectory, --pose-format and --max-time-diff into `load`; UsageError for a format
+/// without a trajectory.
+void read_trajectory_options(const Args& args, scan::LoadConfig& load);
+/// --bag FILE, --topic NAME, --fixed-frame NAME, --frame NAME (io::BagQuery).
+std::vector<OptionSpec> bag_options();
+/// The bag's query when --bag is given (`intrinsics` override CameraInfo); UsageError for
+/// --topic without --bag, --bag without --topic or --fixed-frame, or with a trajectory or --pose.
+std::optional<io::BagQuery> read_bag_options(const Args& args, const std::optional<io::Intrinsics>& intrinsics);
+/// {"bag", "topic", "fixed_frame", "frame"} of the report's inputs (nulls without a bag).
+Json bag_inputs_json(const std::optional<io::BagQuery>& query);
 /// --min-fit-score S in (0, 1], default voids::ClusterConfig's.
 OptionSpec min_fit_score_option(const std::string& echo, const char* help);
 

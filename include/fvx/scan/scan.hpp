@@ -15,7 +15,7 @@
 namespace fvx::scan {
 
 /// Where a scan's pose prior came from.
-enum class PoseSource { Viewpoint, Trajectory, Flag, Identity };
+enum class PoseSource { Viewpoint, Trajectory, Flag, Identity, Tf };
 const char* to_string(PoseSource source);
 
 struct Scan {

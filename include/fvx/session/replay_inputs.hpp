@@ -29,5 +29,7 @@ SessionRecording read_session(const std::string& dir, ReplayConfig& config);
 /// `load` when its turn comes; the plan's warnings are appended to `warnings`.
 std::vector<RecordedScan> recorded_scans(const std::vector<std::string>& paths, const scan::LoadConfig& load,
                                          std::vector<std::string>& warnings);
+/// The scans of a plan (files or a bag's messages), each loaded with `load` when its turn comes.
+std::vector<RecordedScan> recorded_scans(const scan::ScanPlan& plan, const scan::LoadConfig& load);
 
 }  // namespace fvx::session

@@ -44,5 +44,40 @@ TEST(Intrinsics, TyposAndNonsenseAreRefused) {
   }
 }
 
+TEST(Intrinsics, ThreeByThreeAndScanNetFourByFourText) {
+  const test::TempDir dir;
+  std::ofstream(dir / "camera-intrinsics.txt") << "585 0 320\n0 585.5 240\n0 0 1\n";
+  std::ofstream(dir / "intrinsic_depth.txt")
+      << "577.590698 0.000000 318.905426 0.000000\n0.000000 578.729797 242.683609 0.000000\n"
+         "0.000000 0.000000 1.000000 0.000000\n0.000000 0.000000 0.000000 1.000000\n";
+  const Intrinsics a = read_intrinsics(dir / "camera-intrinsics.txt");
+  EXPECT_EQ(a.fx, 585.0);
+  EXPECT_EQ(a.fy, 585.5);
+  EXPECT_EQ(a.cx, 320.0);
+  EXPECT_EQ(a.cy, 240.0);
+  EXPECT_EQ(a.depth_scale, 1000.0);  // 3DMatch, 7-Scenes and ScanNet depth are millimetres
+  EXPECT_FALSE(a.size_stated);
+  const Intrinsics b = read_intrinsics(dir / "intrinsic_depth.txt");
+  EXPECT_EQ(b.fx, 577.590698);
+  EXPECT_EQ(b.cy, 242.683609);
+}
+
+TEST(Intrinsics, TextMatricesThatAreNoPinholeAreRefused) {
+  const test::TempDir dir;
+  std::ofstream(dir / "skew.txt") << "585 1 320\n0 585 240\n0 0 1\n";
+  std::ofstream(dir / "eight.txt") << "585 0 320 0 585 240 0 0\n";
+  std::ofstream(dir / "words.txt") << "fx = 585\n";
+  std::ofstream(dir / "zero.txt") << "0 0 320\n0 585 240\n0 0 1\n";
+  std::ofstream(dir / "long.txt") << std::string(5000, '1') << "\n";
+  for (const char* name : {"skew.txt", "eight.txt", "words.txt", "zero.txt", "long.txt"}) {
+    try {
+      read_intrinsics(dir / name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fvx::io

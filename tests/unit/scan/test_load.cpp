@@ -62,11 +62,11 @@ TEST(LoadScan, ViewpointIsThePriorUnlessIgnoredOrOverridden) {
   io::write_pcd(dir / "s.pcd", {Eigen::Vector3f(0, 0, 1)}, T);
   std::vector<std::string> warnings;
   LoadConfig config;
-  Scan s = load_scan({dir / "s.pcd", std::nullopt, PoseSource::Identity}, config, warnings);
+  Scan s = load_scan({dir / "s.pcd", std::nullopt, PoseSource::Identity, std::nullopt}, config, warnings);
   EXPECT_EQ(s.pose_source, PoseSource::Viewpoint);
   EXPECT_TRUE(s.T_world_sensor.isApprox(T));
   config.use_viewpoint = false;
-  s = load_scan({dir / "s.pcd", std::nullopt, PoseSource::Identity}, config, warnings);
+  s = load_scan({dir / "s.pcd", std::nullopt, PoseSource::Identity, std::nullopt}, config, warnings);
   EXPECT_EQ(s.pose_source, PoseSource::Identity);
   EXPECT_TRUE(s.T_world_sensor.isApprox(Eigen::Isometry3d::Identity()));
   config.pose = Eigen::Isometry3d::Identity();
@@ -79,15 +79,67 @@ TEST(LoadScan, ViewpointIsThePriorUnlessIgnoredOrOverridden) {
 TEST(LoadScanRealData, LegacyOpenNiViewpointIsUsedButWarnedAbout) {
   FVX_REAL_DATA_OR_SKIP(path, "pcl-kinect-sequences/pairwise_tutorial/capture0001.pcd");
   std::vector<std::string> warnings;
-  const Scan s = load_scan({path, std::nullopt, PoseSource::Identity}, LoadConfig{}, warnings);
+  const Scan s = load_scan({path, std::nullopt, PoseSource::Identity, std::nullopt}, LoadConfig{}, warnings);
   EXPECT_EQ(s.pose_source, PoseSource::Viewpoint);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("--ignore-viewpoint"), std::string::npos);
 }
 
+TEST(PlanScans, PoseFoldersMatchByFrameNameAndKittiByFrameId) {
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir / "seq");
+  for (int i = 0; i < 3; ++i)
+    std::ofstream(dir / ("seq/frame-00000" + std::to_string(i) + ".pose.txt"))
+        << "1 0 0 " << i << "\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+  LoadConfig config;
+  config.trajectory_path = dir / "seq";
+  const ScanPlan plan = plan_scans({"x/frame-000002.depth.png", "x/frame-000000.depth.png"}, config);
+  EXPECT_EQ(plan.match, PoseMatch::ByFrameName);
+  EXPECT_EQ(plan.scans[0].T_world_sensor->translation().x(), 2.0);
+  EXPECT_EQ(plan.scans[1].T_world_sensor->translation().x(), 0.0);
+  try {
+    plan_scans({"x/frame-000007.depth.png"}, config);
+    FAIL() << "a frame without a pose file";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no pose file for frame 'frame-000007'"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "kitti.txt") << "1 0 0 5 0 1 0 0 0 0 1 0\n1 0 0 6 0 1 0 0 0 0 1 0\n";
+  config.trajectory_path = dir / "kitti.txt";
+  const ScanPlan kitti = plan_scans({"image/000001.png"}, config);
+  EXPECT_EQ(kitti.match, PoseMatch::ByFrameId);
+  EXPECT_EQ(kitti.scans[0].T_world_sensor->translation().x(), 6.0);
+}
+
+TEST(LoadScan, AScanWithoutAPoseIsRefused) {
+  const test::TempDir dir;
+  // A depth image states no pose: refused when planned, before any scan is read.
+  LoadConfig with_intrinsics;
+  with_intrinsics.intrinsics = io::Intrinsics{};
+  try {
+    plan_scans({dir / "0.png"}, with_intrinsics);
+    FAIL() << "a depth image without a pose";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("0.png: no pose: a depth image states none"), std::string::npos) << e.what();
+  }
+  // A PCD without a VIEWPOINT line: refused when read.
+  std::ofstream(dir / "bare.pcd") << "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+                                     "POINTS 1\nDATA ascii\n0 0 1\n";
+  std::vector<std::string> warnings;
+  const ScanPlan plan = plan_scans({dir / "bare.pcd"}, LoadConfig{});
+  try {
+    load_scan(plan.scans[0], LoadConfig{}, warnings);
+    FAIL() << "a PCD without VIEWPOINT";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("bare.pcd: no pose: the file states none"), std::string::npos) << e.what();
+  }
+  LoadConfig ignore;
+  ignore.use_viewpoint = false;  // --ignore-viewpoint: the points are in the world frame
+  EXPECT_EQ(load_scan(plan.scans[0], ignore, warnings).pose_source, PoseSource::Identity);
+}
+
 TEST(LoadScan, DepthImageWithoutIntrinsicsIsAUsageError) {
   std::vector<std::string> warnings;
-  EXPECT_THROW(load_scan({"frame.png", std::nullopt, PoseSource::Identity}, LoadConfig{}, warnings), UsageError);
+  EXPECT_THROW(load_scan({"frame.png", std::nullopt, PoseSource::Identity, std::nullopt}, LoadConfig{}, warnings), UsageError);
 }
 
 TEST(TumFolder, AssociationsNameTheDepthImagesAndABadLineIsNamed) {
