@@ -23,7 +23,7 @@ while [ $# -gt 0 ]; do
     *) seconds="$1"; shift ;;
   esac
 done
-all=(fuzz_pcd fuzz_ply fuzz_depth_image fuzz_octree fuzz_fcm fuzz_json fuzz_trajectory fuzz_urdf)
+all=(fuzz_pcd fuzz_ply fuzz_depth_image fuzz_octree fuzz_fcm fuzz_json fuzz_trajectory fuzz_urdf)  # fuzz_bag: by name (README)
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 
 build="${FVX_SANITIZE_BUILD_DIR:-build-sanitize}"

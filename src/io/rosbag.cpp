@@ -20,6 +20,7 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/isolated.hpp"
 
 namespace fvx::io {
 
@@ -95,14 +96,17 @@ Intrinsics image_intrinsics(const rosbag::Bag& bag, const BagQuery& query) {
 }
 
 template <typename Message>
-std::pair<double, std::string> header_of(const rosbag::MessageInstance& m) {
+std::pair<double, std::string> header_of(const rosbag::MessageInstance& m, const std::string& path) {
   const auto msg = m.instantiate<Message>();
+  if (!msg) throw FileError(path, "a message on " + m.getTopic() + " does not hold its connection's type");
   return {msg->header.stamp.toSec(), msg->header.frame_id};
 }
 
 }  // namespace
 
-std::vector<BagMessage> index_bag(const BagQuery& query) {
+namespace {
+
+std::vector<BagMessage> index_bag_here(const BagQuery& query) {
   rosbag::Bag bag;
   open_bag(bag, query.path);
   rosbag::View view(bag, rosbag::TopicQuery(query.topic));
@@ -125,7 +129,7 @@ std::vector<BagMessage> index_bag(const BagQuery& query) {
                            messages.back().record_nsec == out.record_nsec;
     out.record_rank = same_time ? messages.back().record_rank + 1 : 0;
     std::tie(out.stamp_s, out.frame_id) =
-        type == kCloudType ? header_of<sensor_msgs::PointCloud2>(m) : header_of<sensor_msgs::Image>(m);
+        type == kCloudType ? header_of<sensor_msgs::PointCloud2>(m, query.path) : header_of<sensor_msgs::Image>(m, query.path);
     if (!query.sensor_frame.empty()) out.frame_id = query.sensor_frame;
     try {
       out.T_fixed_sensor = isometry(buffer.lookupTransform(query.fixed_frame, out.frame_id, ros::Time(out.stamp_s)).transform);
@@ -138,8 +142,6 @@ std::vector<BagMessage> index_bag(const BagQuery& query) {
   }
   return messages;
 }
-
-namespace {
 
 /// x, y, z of a PointCloud2 (FLOAT32 or FLOAT64 fields, little-endian), NaN kept.
 std::vector<Eigen::Vector3d> cloud_points(const sensor_msgs::PointCloud2& cloud, const std::string& where) {
@@ -205,9 +207,7 @@ DepthImage depth_image(const sensor_msgs::Image& image, double depth_scale, cons
   return depth;
 }
 
-}  // namespace
-
-BagScan read_bag_scan(const BagQuery& query, const BagMessage& message) {
+BagScan read_bag_scan_here(const BagQuery& query, const BagMessage& message) {
   rosbag::Bag bag;
   open_bag(bag, query.path);
   const ros::Time t(message.record_sec, message.record_nsec);
@@ -222,10 +222,89 @@ BagScan read_bag_scan(const BagQuery& query, const BagMessage& message) {
     } else if (const auto image = m.instantiate<sensor_msgs::Image>()) {
       scan.intrinsics = image_intrinsics(bag, query);
       scan.depth = depth_image(*image, scan.intrinsics.depth_scale, where);
+    } else {
+      throw FileError(where, "the message holds neither a PointCloud2 nor an Image");
     }
     return scan;
   }
   throw FileError(query.path, "message " + std::to_string(message.index) + " on " + query.topic + " is gone");
+}
+
+/// Plain bytes across the child's pipe (core/isolated.hpp): values as they lie in memory.
+struct Bytes {
+  std::string data;
+  std::size_t at = 0;
+  template <typename T>
+  void put(const T& v) { data.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  void put(const std::string& v) { put(v.size()), data.append(v); }
+  template <typename T>
+  void put(const std::vector<T>& v) {
+    put(v.size());
+    if (!v.empty()) data.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  template <typename T>
+  void get(T& v) { std::memcpy(static_cast<void*>(&v), take(sizeof v), sizeof v); }
+  void get(std::string& v) { std::size_t n; get(n), v.assign(take(n), n); }
+  template <typename T>
+  void get(std::vector<T>& v) {
+    std::size_t n;
+    get(n), v.resize(n);
+    if (n) std::memcpy(static_cast<void*>(v.data()), take(n * sizeof(T)), n * sizeof(T));
+  }
+  const char* take(std::size_t n) {
+    FVX_ASSERT(n <= data.size() - at, "the bag reader's answer is shorter than it says");
+    at += n;
+    return data.data() + at - n;
+  }
+};
+
+}  // namespace
+
+// librosbag reads past its buffers on some corrupt bags: both passes run in a child process.
+std::vector<BagMessage> index_bag(const BagQuery& query) {
+  Bytes bytes{run_isolated(query.path, "ROS bag", [&] {
+    Bytes out;
+    const std::vector<BagMessage> messages = index_bag_here(query);
+    out.put(messages.size());
+    for (const BagMessage& m : messages)
+      out.put(m.index), out.put(m.record_sec), out.put(m.record_nsec), out.put(m.record_rank), out.put(m.stamp_s),
+          out.put(m.frame_id), out.put(m.T_fixed_sensor.matrix());
+    return out.data;
+  })};
+  std::size_t n;
+  bytes.get(n);
+  std::vector<BagMessage> messages(n);
+  for (BagMessage& m : messages) {
+    Eigen::Matrix4d T;
+    bytes.get(m.index), bytes.get(m.record_sec), bytes.get(m.record_nsec), bytes.get(m.record_rank), bytes.get(m.stamp_s),
+        bytes.get(m.frame_id), bytes.get(T);
+    m.T_fixed_sensor.matrix() = T;
+  }
+  return messages;
+}
+
+BagScan read_bag_scan(const BagQuery& query, const BagMessage& message) {
+  Bytes bytes{run_isolated(query.path, "ROS bag", [&] {
+    const BagScan scan = read_bag_scan_here(query, message);
+    Bytes out;
+    out.put(scan.points), out.put(scan.depth.has_value());
+    if (scan.depth) out.put(scan.depth->width), out.put(scan.depth->height), out.put(scan.depth->raw);
+    const Intrinsics& K = scan.intrinsics;
+    out.put(K.fx), out.put(K.fy), out.put(K.cx), out.put(K.cy), out.put(K.depth_scale), out.put(K.width), out.put(K.height),
+        out.put(K.size_stated);
+    return out.data;
+  })};
+  BagScan scan;
+  bool depth = false;
+  bytes.get(scan.points), bytes.get(depth);
+  if (depth) {
+    scan.depth.emplace();
+    bytes.get(scan.depth->width), bytes.get(scan.depth->height), bytes.get(scan.depth->raw);
+  }
+  Intrinsics& K = scan.intrinsics;
+  bytes.get(K.fx), bytes.get(K.fy), bytes.get(K.cx), bytes.get(K.cy), bytes.get(K.depth_scale), bytes.get(K.width),
+      bytes.get(K.height), bytes.get(K.size_stated);
+  return scan;
 }
 
 }  // namespace fvx::io

@@ -296,7 +296,8 @@ TEST(Hardening, EveryFuzzFindingIsRefusedOnOneLine) {
       {"fuzz_depth_image", "integrate {} --fx 5 --fy 5 --cx 3.5 --cy 2.5 -o m.bt"},
       {"fuzz_json", "integrate " + sample_scan(0) + " -K {} -o m.bt"},
       {"fuzz_octree", "voids {}"}, {"fuzz_fcm", "capmap info {}"},
-      {"fuzz_urdf", "capmap build {} BASE TIP --voxel 0.5 --directions 8 -o m.fcm"}};
+      {"fuzz_urdf", "capmap build {} BASE TIP --voxel 0.5 --directions 8 -o m.fcm"},
+      {"fuzz_bag", "integrate --bag {} --topic /depth --fixed-frame odom --fx 525 --fy 525 --cx 0.5 --cy 0 -o m.bt"}};
   int found = 0;
   for (const auto& harness : std::filesystem::directory_iterator(corpus)) {
     for (const auto& file : std::filesystem::directory_iterator(harness.path())) {
