@@ -49,13 +49,20 @@ std::string topics_of(const rosbag::Bag& bag) {
   return text.empty() ? "none" : text;
 }
 
+/// A frame id as tf2 takes it: old (tf) bags write "/odom", tf2 refuses a leading slash.
+std::string tf2_frame(const std::string& frame) { return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame; }
+
 /// Every /tf and /tf_static transform of the bag, for look-ups at any stamp in it.
 void load_tf(const rosbag::Bag& bag, tf2::BufferCore& buffer) {
   rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
   for (const rosbag::MessageInstance& m : view) {
     const auto tf = m.instantiate<tf2_msgs::TFMessage>();
     if (!tf) continue;
-    for (const auto& t : tf->transforms) buffer.setTransform(t, "bag", m.getTopic() == "/tf_static");
+    for (geometry_msgs::TransformStamped t : tf->transforms) {
+      t.header.frame_id = tf2_frame(t.header.frame_id);
+      t.child_frame_id = tf2_frame(t.child_frame_id);
+      buffer.setTransform(t, "bag", m.getTopic() == "/tf_static");
+    }
   }
 }
 
@@ -102,10 +109,6 @@ std::pair<double, std::string> header_of(const rosbag::MessageInstance& m, const
   return {msg->header.stamp.toSec(), msg->header.frame_id};
 }
 
-}  // namespace
-
-namespace {
-
 std::vector<BagMessage> index_bag_here(const BagQuery& query) {
   rosbag::Bag bag;
   open_bag(bag, query.path);
@@ -132,7 +135,8 @@ std::vector<BagMessage> index_bag_here(const BagQuery& query) {
         type == kCloudType ? header_of<sensor_msgs::PointCloud2>(m, query.path) : header_of<sensor_msgs::Image>(m, query.path);
     if (!query.sensor_frame.empty()) out.frame_id = query.sensor_frame;
     try {
-      out.T_fixed_sensor = isometry(buffer.lookupTransform(query.fixed_frame, out.frame_id, ros::Time(out.stamp_s)).transform);
+      out.T_fixed_sensor = isometry(
+          buffer.lookupTransform(tf2_frame(query.fixed_frame), tf2_frame(out.frame_id), ros::Time(out.stamp_s)).transform);
     } catch (const tf2::TransformException& e) {
       throw FileError(query.path, "message " + std::to_string(out.index) + " on " + query.topic + ": no transform from '" +
                                       out.frame_id + "' to '" + query.fixed_frame + "' at " + std::to_string(out.stamp_s) +

@@ -204,6 +204,10 @@ TEST(BagRealData, BadBagsTopicsAndFramesAreRefusedOnOneLine) {
     EXPECT_NE(r.err.find(message), std::string::npos) << arguments << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "m.bt")) << arguments;
   }
+  // A fixed frame written as old tf bags write frames ("/odom") is the same frame.
+  const RunResult slash = run_fvx(dir, "integrate -o m.bt --bag run.bag --topic /camera/depth/points --fixed-frame /odom "
+                                       "-r 0.1 --no-register");
+  EXPECT_EQ(slash.status, 0) << slash.err;
   // Replay reads the same bag: one row per message.
   const RunResult replay = run_fvx(dir, "replay --bag run.bag --topic /camera/depth/points --fixed-frame odom "
                                         "--no-capmap --no-register -r 0.1 --search-every 0 --format json -o out");
