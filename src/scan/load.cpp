@@ -159,18 +159,23 @@ ScanPlan plan_bag(const io::BagQuery& query) {
 
 namespace {
 
+/// The image's points, unless the intrinsics state another size: they are then another
+/// camera's (or resolution's), and back-projecting with them would misplace every point.
+std::vector<Eigen::Vector3d> backproject_checked(const std::string& path, const io::DepthImage& depth,
+                                                 const io::Intrinsics& K) {
+  if (K.size_stated && (depth.width != K.width || depth.height != K.height))
+    throw FileError(path, "the image is " + std::to_string(depth.width) + "x" + std::to_string(depth.height) +
+                              " but the intrinsics say " + std::to_string(K.width) + "x" + std::to_string(K.height));
+  return backproject(depth, K);
+}
+
 /// A bag message's points in its frame: a cloud's, or its depth image back-projected.
 Scan load_bag_scan(const ScanSource& source) {
   const auto& [query, message] = *source.bag;
   io::BagScan data = io::read_bag_scan(query, message);
   Scan scan;
   scan.source = source.path;
-  scan.points_sensor = data.depth ? backproject(*data.depth, data.intrinsics) : std::move(data.points);
-  if (data.depth && (data.depth->width != data.intrinsics.width || data.depth->height != data.intrinsics.height) &&
-      data.intrinsics.size_stated)
-    throw FileError(source.path, "the image is " + std::to_string(data.depth->width) + "x" +
-                                     std::to_string(data.depth->height) + " but the intrinsics say " +
-                                     std::to_string(data.intrinsics.width) + "x" + std::to_string(data.intrinsics.height));
+  scan.points_sensor = data.depth ? backproject_checked(source.path, *data.depth, data.intrinsics) : std::move(data.points);
   scan.T_world_sensor = message.T_fixed_sensor;
   scan.pose_source = PoseSource::Tf;
   return scan;
@@ -187,15 +192,7 @@ Scan load_scan(const ScanSource& source, const LoadConfig& config,
   const bool cloud = !io::is_depth_image_path(source.path);
   if (!cloud) {
     if (!config.intrinsics) throw needs_intrinsics(source.path);
-    const io::DepthImage depth = io::read_depth_image(source.path);
-    const io::Intrinsics& K = *config.intrinsics;
-    // A stated size that differs means the intrinsics are another camera's (or another
-    // resolution's): back-projecting with them would put every point in the wrong place.
-    if (K.size_stated && (depth.width != K.width || depth.height != K.height))
-      throw FileError(source.path, "the image is " + std::to_string(depth.width) + "x" +
-                                       std::to_string(depth.height) + " but the intrinsics say " +
-                                       std::to_string(K.width) + "x" + std::to_string(K.height));
-    scan.points_sensor = backproject(depth, K);
+    scan.points_sensor = backproject_checked(source.path, io::read_depth_image(source.path), *config.intrinsics);
   } else {
     io::CloudFile file = io::read_cloud(source.path);
     scan.points_sensor = std::move(file.points);
