@@ -44,4 +44,4 @@ echo "== fvx explore: the closed loop on $scene with the fvx arm at the origin, 
 rm -rf "$out/session"
 "$fvx" explore "$scene" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 --arm data/arms/fvx-arm.urdf \
   --target-size 0.06 --max-views 15 --progress -o "$out/session"
-echo "the session: $out/session (manifest.json, scans/*.pcd, maps/*.ot for octovis, reports/*.json)" >&2
+echo "the session: $out/session (manifest.json, scans/*.pcd, maps/*.ot for octovis, reports/*.json, views.png: a picture per view)" >&2

@@ -3,13 +3,13 @@
 // fvx/report/analysis.hpp.
 #include <optional>
 
+#include "fvx/pipeline/options.hpp"
 #include "fvx/report/analysis.hpp"
 #include "options.hpp"
 #include "report.hpp"
 
 namespace fvx::cli {
 
-/// --bounds x0,y0,z0,x1,y1,z1 (metres; or another option of that form), or empty.
-std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name = "bounds");
+using pipeline::parse_bounds;
 
 }  // namespace fvx::cli

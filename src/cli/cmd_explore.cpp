@@ -14,6 +14,7 @@
 #include "fvx/session/recorder.hpp"
 #include "fvx/session/simulated_world.hpp"
 #include "fvx/session/start.hpp"
+#include "fvx/report/picture3d.hpp"
 #include "fvx/report/session.hpp"
 
 namespace fvx::cli {
@@ -61,6 +62,7 @@ const CommandSpec kExploreSpec = {
                  threads_option("/config/pipeline/nbv/threads", "threads for rendering and the search"),
              },
              search_model_options("/config/pipeline", "/config/pipeline/nbv"),
+             report::picture_options(true, nullptr, nullptr),
              session_report_options()})};
 
 namespace {
@@ -177,6 +179,7 @@ int run_explore(const Args& args) {
   std::optional<Eigen::Isometry3d> start;
   if (args.has("start")) start = parse_look_at(args.get("start"), "--start");
   throw_if_problems("fvx explore", config.validate());
+  const report::PictureRequest picture_request = report::read_picture_options(args);
   Progress progress(args.has("progress"));
   const session::SimulatedWorld world(scene, pc.resolution_m, S, start, arm_inputs.T_world_base,
                                       S.center() - Eigen::Vector3d(0, 0, 0.1), arm_inputs.reach, nc.sensor,
@@ -192,10 +195,13 @@ int run_explore(const Args& args) {
                              nc.sensor);
   const std::vector<std::string> joint_names = arm_inputs.joint_names();
   std::vector<session::ViewRow> rows;
+  report::SessionPictures pictures(dir.string(), picture_request, nc.sensor,
+                                   arm_inputs.reach ? std::optional(arm_inputs.T_world_base) : std::nullopt);
   const session::ExploreResult result = session::explore(
       world.kinect(render_config), arm_inputs.reach, config,
       [&](const session::ViewRecord& v, const pipeline::State& state) {
         session::append_row(rows, world.row_of(v, state.map), v.revealed_void_cells);
+        pictures.add(v.view, state.map.occupied_centers(), pc.resolution_m, v.step, v.chosen);
         const session::ViewRow& row = rows.back();
         // The view's files, then the manifest that lists them.
         recorder.add(v, state.map,
@@ -207,6 +213,7 @@ int run_explore(const Args& args) {
                         (row.truth->target_seen ? ", target seen" : ""));
       });
   progress.finish();
+  pictures.finish("fvx explore " + args.positional[0]);
 
   if (format == Format::json) {
     write_report(

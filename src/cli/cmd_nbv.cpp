@@ -8,6 +8,7 @@
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/report/nbv.hpp"
+#include "fvx/report/picture3d.hpp"
 #include "fvx/voids/width.hpp"
 
 namespace fvx::cli {
@@ -65,59 +66,20 @@ const CommandSpec kNbvSpec = {
              {
                  {"utility-cloud", 0, "FILE", "the utility field as a coloured cloud, .ply or .pcd: red (low), "
                                               "yellow, green (high) by rank; pruned cells grey", "-"},
-                 {"picture", 0, "FILE.png", "a top view of the utility field, the voids and the best view", "-"},
                  {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
                  {"timing", 0, nullptr, "add the search time split (grid, accumulation, pruning, sampling, "
                                         "scoring) and ray-casting speed to the report", "-"},
                  {"help", 'h', nullptr, "show this help", "-"},
-             }})};
+             },
+             report::picture_options(false, "a 3-D picture: the search space's cells, void ellipsoids, the utility "
+                                            "field by rank and the best view's frustum",
+                                     "a top view of the utility field, the voids and the best view")})};
 
-namespace {
-
-std::pair<int, int> parse_rays(const Args& args) {
-  if (!args.has("rays")) return {kNbv.ray_cols, kNbv.ray_rows};
-  return pipeline::parse_cols_rows(args.get("rays"), "--rays");
-}
-
-/// The search's options: strategy, sensor, rays, sampling, refinement, polish, accumulation.
-nbv::Config parse_search_options(const Args& args) {
-  nbv::Config config;
-  config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
-  config.sensor = parse_depth_camera(args, "nbv");
-  std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
-  args.read("top", config.top);
-  args.read("poses", config.valid_poses);
-  args.read("orientations", config.orientations_per_cell);
-  args.read("jitter", config.jitter_deg);
-  args.read("separation", config.min_separation_m);
-  args.read("clearance", config.clearance_m);
-  args.read("refine", config.refine_poses);
-  if (args.has("refine-step")) {
-    const std::string text = args.get("refine-step");
-    const bool with_max = text.find(',') != std::string::npos;
-    const std::vector<double> v = parse_double_list(text, "--refine-step", with_max ? 2 : 1);
-    config.refine_step_m = v[0];
-    if (with_max) config.refine_max_m = v[1];
-    if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
-      throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
-  }
-  args.read("polish", config.polish_poses);
-  args.read("climb", config.climb_rounds);
-  args.read("rolls", config.exhaustive_rolls);
-  config.count_near_void_cells = parse_near_voids(args, true);
-  config.view_bounds_m = parse_bounds(args, "view-bounds");
-  args.read("seed", config.seed);
-  args.read("threads", config.threads);
-  parse_accumulation(args, config);
-  return config;
-}
-
-}  // namespace
 
 int run_nbv(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx nbv: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
-  nbv::Config config = parse_search_options(args);
+  nbv::Config config = pipeline::read_search_options(args);
   const auto bounds = parse_bounds(args);
   voids::ClusterConfig cluster_config;
   args.read("min-fit-score", cluster_config.min_fit_score);
@@ -132,8 +94,7 @@ int run_nbv(const Args& args) {
   if (args.has("utility-cloud") && lowercase_extension(args.get("utility-cloud")) != ".ply" &&
       lowercase_extension(args.get("utility-cloud")) != ".pcd")
     throw UsageError("--utility-cloud " + args.get("utility-cloud") + ": expected a .ply or .pcd file");
-  if (args.has("picture") && lowercase_extension(args.get("picture")) != ".png")
-    throw UsageError("--picture " + args.get("picture") + ": expected a .png file");
+  const report::PictureRequest pictures = report::read_picture_options(args);
 
   // Inputs first, so that a bad file fails before any work.
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
@@ -142,7 +103,7 @@ int run_nbv(const Args& args) {
   const std::optional<nbv::Reach>& reach = arm_inputs.reach;
   const Eigen::Isometry3d& T_world_base = arm_inputs.T_world_base;
 
-  config.keep_utility_field = args.has("utility-cloud") || args.has("picture");
+  config.keep_utility_field = args.has("utility-cloud") || args.has("picture") || args.has("picture-top");
   Progress progress(args.has("progress"));
   config.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
     progress.update("fvx nbv: " + stage + (total ? " " + std::to_string(done) + "/" + std::to_string(total) : ""));
@@ -153,7 +114,8 @@ int run_nbv(const Args& args) {
   const nbv::Result r = nbv::select(map, a, reach, config);
   progress.finish();
   if (args.has("utility-cloud")) write_utility_cloud(args.get("utility-cloud"), r);
-  if (args.has("picture")) write_utility_picture(args.get("picture"), map, a, r);
+  const Json picture = report::write_search_pictures(pictures, map, a, r, config.sensor,
+                                                     reach ? std::optional<Eigen::Vector3d>(T_world_base.translation()) : std::nullopt);
 
   const double R = map.resolution_m();
   Json report = new_report("nbv");
@@ -165,6 +127,7 @@ int run_nbv(const Args& args) {
                       {"arm", args.has("arm") ? Json(args.get("arm")) : Json(nullptr)}};
   report["results"] = nbv_results_json(r, a, R, arm_inputs.joint_names(),
                                        config.strategy, args.has("timing"));
+  report["results"]["picture"] = picture;
   Json warnings = a.warnings;
   if (!r.reason.empty()) warnings.push_back(r.reason);
   report["warnings"] = warnings;

@@ -13,6 +13,7 @@
 #include "fvx/session/recorder.hpp"
 #include "fvx/session/replay_inputs.hpp"
 #include "fvx/report/nbv.hpp"
+#include "fvx/report/picture3d.hpp"
 #include "fvx/report/session.hpp"
 #include "table.hpp"
 
@@ -68,6 +69,7 @@ const CommandSpec kReplaySpec = {
                  threads_option("/config/pipeline/nbv/threads", "threads for the search"),
              },
              search_model_options("/config/pipeline", "/config/pipeline/nbv"),
+             report::picture_options(true, nullptr, nullptr),
              session_report_options()})};
 
 namespace {
@@ -215,6 +217,9 @@ int run_replay(const Args& args) {
   const std::vector<session::RecordedScan>& scans = inputs.scans;
   apply_flags(args, inputs, arm_inputs, from, to, config);
   const session::Recorder recorder(dir.string());  // maps/ and reports/
+  report::SessionPictures pictures(dir.string(), report::read_picture_options(args), nc.sensor,
+                                   arm_inputs.reach ? std::optional(arm_inputs.T_world_base) : std::nullopt);
+  std::vector<Eigen::Vector3f> occupied_m;  // of the view whose search runs
   const double R = pc.resolution_m;
   const std::vector<std::string> joint_names = arm_inputs.joint_names();
   const std::size_t total = config.last_view < 0 ? scans.size() : std::min<std::size_t>(scans.size(), to);
@@ -224,11 +229,12 @@ int run_replay(const Args& args) {
   try {
     // Each view's map is written while its search runs (the next scan changes the map).
     const auto save_map = [&](int view, const pipeline::State& state) {
-      if (view + 1 >= from) recorder.save_map(view, state.map);
+      if (view + 1 >= from) recorder.save_map(view, state.map), occupied_m = state.map.occupied_centers();
     };
     session::replay(scans, arm_inputs.reach, config, save_map, [&](const session::ReplayView& v) {
       session::append_row(rows, session::row_of(v, R), v.revealed_void_cells, v.from_choice_m, v.from_choice_deg);
       const session::ViewRow& row = rows.back();
+      if (v.view + 1 >= from) pictures.add(v.view, occupied_m, R, v.step, v.chosen);
       if (v.view + 1 >= from)
         recorder.save_report(v.view, report_text(view_report("replay", {{"source", inputs.source}, {"view", v.view + 1},
                                                                         {"scan", v.name}},
@@ -247,6 +253,7 @@ int run_replay(const Args& args) {
   std::vector<session::ViewRow> shown;
   for (const session::ViewRow& r : rows)
     if (r.view + 1 >= from) shown.push_back(r);
+  pictures.finish("fvx replay " + inputs.source);
   if (!shown.empty())
     write_volume_plot((dir / "volumes.png").string(),
                       "fvx replay: known and void volume in the search space after each view", shown);
@@ -270,7 +277,7 @@ int run_replay(const Args& args) {
   }
   if (!failure.empty()) throw Error("fvx replay: " + failure + (shown.empty() ? "; nothing was written" : "; the " +
                                     std::to_string(shown.size()) + " views before it are in " + dir.string()));
-  std::cerr << "fvx replay: " << rows.size() << " views; maps, reports and volumes.png in " << dir.string() << "\n";
+  std::cerr << "fvx replay: " << rows.size() << " views; maps, reports, volumes.png and views.png in " << dir.string() << "\n";
   return 0;
 }
 

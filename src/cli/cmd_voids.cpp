@@ -5,6 +5,7 @@
 #include "common_options.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/stopwatch.hpp"
+#include "fvx/report/picture3d.hpp"
 
 namespace fvx::cli {
 
@@ -12,7 +13,7 @@ const CommandSpec kVoidsSpec = {
     "voids",
     "MAP.bt|MAP.ot [-o REPORT.json] [options]",
     "a map's voids (unknown inside the hull), their ellipsoids, and frontier-voids with utility",
-    {
+    options({{
         {"output", 'o', "FILE", "write the JSON report to FILE instead of stdout", "-"},
         {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space, metres (default: the box of the known cells)",
          "/config/bounds_m"},
@@ -22,15 +23,15 @@ const CommandSpec kVoidsSpec = {
         {"cloud", 0, "FILE", "frontier (red) and void (violet) cells as a coloured cloud, .ply or .pcd", "-"},
         {"by-cluster", 0, nullptr, "colour the cloud by cluster instead", "-"},
         {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh", "-"},
-        {"picture", 0, "FILE.png", "a top view of occupied (grey), frontier (red) and void (violet) cells", "-"},
         {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report", "-"},
         {"help", 'h', nullptr, "show this help", "-"},
-    }};
+    }, report::picture_options(false, "a 3-D picture of the search space: occupied (grey), frontier (red) and void (violet) cells, the void ellipsoids", "a top view of occupied (grey), frontier (red) and void (violet) cells")})};
 
 int run_voids(const Args& args) {
   if (args.positional.size() != 1)
     throw UsageError("fvx voids: give one map (.bt or .ot), got " + std::to_string(args.positional.size()));
   const auto bounds = parse_bounds(args);
+  const report::PictureRequest pictures = report::read_picture_options(args);
   voids::ClusterConfig config;
   args.read("min-fit-score", config.min_fit_score);
   args.read("seed", config.seed);
@@ -42,7 +43,6 @@ int run_voids(const Args& args) {
   const double analysis_s = clock.lap();
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
   if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);
-  if (args.has("picture")) write_picture(args.get("picture"), map, a, true);
 
   const double R = map.resolution_m();
   Json report = new_report("voids");
@@ -55,6 +55,7 @@ int run_voids(const Args& args) {
   report["inputs"] = {{"map", args.positional[0]}, {"resolution_m", R}};
   report["results"] = voids_results_json(a, R);
   if (a.void_cells.empty() && a.warnings.empty()) a.warnings.push_back("no void cell in the search space");
+  report["results"]["picture"] = report::write_analysis_pictures(pictures, map, a, true);
   if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;
   write_report(report, args.has("output") ? args.get("output") : "");

@@ -27,7 +27,7 @@ struct Failure {
 };
 
 /// Bumped whenever an entry's signature or a type it passes changes.
-constexpr int kAbiVersion = 2;
+constexpr int kAbiVersion = 3;
 
 struct Api {
   int abi_version;
@@ -43,6 +43,7 @@ struct Api {
                          const std::vector<io::Rgb>& colors);
   void (*write_top_view_png)(Failure&, const std::string& path, double cell_m,
                              const std::vector<io::PictureLayer>& layers, int width_px);
+  void (*write_png)(Failure&, const std::string& path, const io::RgbImage& image);
   void (*write_line_plot_png)(Failure&, const std::string& path, const std::string& title,
                               const std::string& x_label, const std::string& y_label,
                               const std::vector<io::PlotSeries>& series, int width_px, int height_px);

@@ -128,6 +128,8 @@ void write_top_view_png(const std::string& path, double cell_m, const std::vecto
   call<&Api::write_top_view_png>(path, cell_m, layers, width_px);
 }
 
+void write_png(const std::string& path, const RgbImage& image) { call<&Api::write_png>(path, image); }
+
 void write_line_plot_png(const std::string& path, const std::string& title, const std::string& x_label,
                          const std::string& y_label, const std::vector<PlotSeries>& series, int width_px,
                          int height_px) {

@@ -54,6 +54,9 @@ const Api kApi = {
     },
     [](Failure& f, const std::string& path, double cell_m, const std::vector<io::PictureLayer>& layers,
        int width_px) { guarded(f, [&] { io::write_top_view_png(path, cell_m, layers, width_px); }); },
+    [](Failure& f, const std::string& path, const io::RgbImage& image) {
+      guarded(f, [&] { io::write_png(path, image); });
+    },
     [](Failure& f, const std::string& path, const std::string& title, const std::string& x_label,
        const std::string& y_label, const std::vector<io::PlotSeries>& series, int width_px, int height_px) {
       guarded(f, [&] { io::write_line_plot_png(path, title, x_label, y_label, series, width_px, height_px); });

@@ -124,6 +124,23 @@ void write_top_view_png(const std::string& path, double cell_m, const std::vecto
   });
 }
 
+void write_png(const std::string& path, const RgbImage& image) {
+  if (lowercase_extension(path) != ".png") throw FileError(path, "pictures are written as .png");
+  FVX_ASSERT(image.pixels.size() == std::size_t(image.width) * std::size_t(image.height), "a pixel per position");
+  cv::Mat bgr(image.height, image.width, CV_8UC3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb& c = image.at(x, y);
+      bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(c[2], c[1], c[0]);
+    }
+  for (const PictureText& t : image.texts)
+    cv::putText(bgr, t.text, cv::Point(t.x_px, t.y_px), cv::FONT_HERSHEY_SIMPLEX, t.scale,
+                cv::Scalar(t.colour[2], t.colour[1], t.colour[0]), 1, cv::LINE_AA);
+  write_path_atomically(path, [&](const std::string& temp) {
+    if (!cv::imwrite(temp, bgr)) throw FileError(path, "cannot write the PNG");
+  });
+}
+
 void write_line_plot_png(const std::string& path, const std::string& title, const std::string& x_label,
                          const std::string& y_label, const std::vector<PlotSeries>& series, int width_px,
                          int height_px) {

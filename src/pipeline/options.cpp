@@ -76,6 +76,57 @@ OptionSpec min_fit_score_option(const std::string& echo, const char* help) {
   return {"min-fit-score", 0, "S", help, echo, dflt(voids::ClusterConfig{}.min_fit_score), above(0, 1)};
 }
 
+std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name) {
+  if (!args.has(name)) return std::nullopt;
+  const auto b = parse_double_list(args.get(name), "--" + name + " (x0,y0,z0,x1,y1,z1)", 6);
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
+  if (!(box.min().array() < box.max().array()).all())
+    throw UsageError("--" + name + ": the minimum must be below the maximum on every axis");
+  return box;
+}
+
+namespace {
+
+std::pair<int, int> parse_rays(const Args& args) {
+  if (!args.has("rays")) return {nbv::Config{}.ray_cols, nbv::Config{}.ray_rows};
+  return parse_cols_rows(args.get("rays"), "--rays");
+}
+
+}  // namespace
+
+nbv::Config read_search_options(const Args& args) {
+  nbv::Config config;
+  config.strategy = args.has("strategy") ? nbv::parse_strategy(args.get("strategy")) : config.strategy;
+  config.sensor = io::parse_depth_camera(args, "nbv");
+  std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
+  args.read("top", config.top);
+  args.read("poses", config.valid_poses);
+  args.read("orientations", config.orientations_per_cell);
+  args.read("jitter", config.jitter_deg);
+  args.read("separation", config.min_separation_m);
+  args.read("clearance", config.clearance_m);
+  args.read("refine", config.refine_poses);
+  if (args.has("refine-step")) {
+    const std::string text = args.get("refine-step");
+    const bool with_max = text.find(',') != std::string::npos;
+    const std::vector<double> v = parse_double_list(text, "--refine-step", with_max ? 2 : 1);
+    config.refine_step_m = v[0];
+    if (with_max) config.refine_max_m = v[1];
+    if (!(config.refine_step_m > 0.0 && config.refine_step_m <= config.refine_max_m && config.refine_max_m <= 10.0))
+      throw UsageError("--refine-step '" + args.get("refine-step") + "': expected 0 < STEP <= MAX <= 10 metres");
+  }
+  args.read("polish", config.polish_poses);
+  args.read("climb", config.climb_rounds);
+  args.read("rolls", config.exhaustive_rolls);
+  config.count_near_void_cells = parse_near_voids(args, true);
+  config.view_bounds_m = parse_bounds(args, "view-bounds");
+  args.read("seed", config.seed);
+  args.read("threads", config.threads);
+  parse_accumulation(args, config);
+  return config;
+}
+
+
 double parse_resolution(const Args& args, double fallback) {
   return args.number("resolution", fallback);
 }

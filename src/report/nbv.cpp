@@ -10,8 +10,6 @@
 
 namespace fvx::report {
 
-namespace {
-
 io::Rgb ramp(double t) {  // red → yellow → green, as the paper's Figure 4
   t = std::clamp(t, 0.0, 1.0);
   return t < 0.5 ? io::Rgb{230, std::uint8_t(230 * 2 * t), 30} : io::Rgb{std::uint8_t(230 * 2 * (1 - t)), 200, 30};
@@ -32,8 +30,6 @@ std::vector<double> utility_ranks(const nbv::Result& r) {
   }
   return ranks;
 }
-
-}  // namespace
 
 void write_utility_cloud(const std::string& path, const nbv::Result& r) {
   const std::vector<double> rank = utility_ranks(r);

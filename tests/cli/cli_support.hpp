@@ -1,5 +1,6 @@
 #pragma once
 // Runs the fvx binary as a user would and captures exit status, stdout and stderr.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -50,6 +51,13 @@ inline RunResult run_fvx(const TempDir& dir, const std::string& arguments, const
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+/// A map of the crates scene seen from two views, map.ot in `dir`, built with the binary.
+inline void make_crates_map(const TempDir& dir) {
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0.5,0.8,0.8,0,0.15 -o b.pcd").status, 0);
+  ASSERT_EQ(run_fvx(dir, "integrate -o map.ot -r 0.025 --no-register a.pcd b.pcd").status, 0);
 }
 
 inline std::size_t line_count(const std::string& text) {

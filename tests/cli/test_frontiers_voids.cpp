@@ -11,13 +11,6 @@ namespace {
 
 using nlohmann::json;
 
-/// A map of the crates scene seen from two views, built with the binary itself.
-void make_crates_map(const TempDir& dir) {
-  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd").status, 0);
-  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0.5,0.8,0.8,0,0.15 -o b.pcd").status, 0);
-  ASSERT_EQ(run_fvx(dir, "integrate -o map.ot -r 0.025 --no-register a.pcd b.pcd").status, 0);
-}
-
 TEST(CliFrontiersVoids, ReportsAndFilesPeopleOpen) {
   const TempDir dir;
   make_crates_map(dir);

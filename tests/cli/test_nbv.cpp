@@ -71,9 +71,13 @@ TEST(CliNbv, RanksReachableViewsAndWritesTheUtilityField) {
   r = run_fvx(dir, command + " -o v2.json --threads 1");
   ASSERT_EQ(r.status, 0) << r.err;
   const json v2 = json::parse(slurp(dir / "v2.json"));
-  EXPECT_EQ(v2["results"], v["results"]);
-  r = run_fvx(dir, command + " -o v3.json");
+  json pictured = v["results"];
+  pictured["picture"] = nullptr;  // the run without --picture names none
+  EXPECT_EQ(v2["results"], pictured);
+  const std::string picture = slurp(dir / "u.png");
+  r = run_fvx(dir, command + " -o v3.json --utility-cloud u.ply --picture u.png");
   EXPECT_EQ(slurp(dir / "v3.json"), first);
+  EXPECT_EQ(slurp(dir / "u.png"), picture);  // the picture too, byte for byte
   // Timing only when asked for.
   EXPECT_FALSE(res.contains("timing_s"));
   r = run_fvx(dir, command + " --timing");

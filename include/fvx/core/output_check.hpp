@@ -8,8 +8,8 @@
 namespace fvx {
 
 /// The options that name outputs, whichever command declares them.
-inline constexpr const char* kOutputOptions[] = {"output", "report",    "cloud",        "picture",
-                                                 "utility-cloud", "ellipsoids", "ground-truth"};
+inline constexpr const char* kOutputOptions[] = {"output",        "report",     "cloud",       "picture",
+                                                 "picture-top",   "utility-cloud", "ellipsoids", "ground-truth"};
 
 /// UsageError (exit 2) for an output that is an existing input file (a positional argument or
 /// another option's value) or names the same file as another output; FileError (exit 1) for a

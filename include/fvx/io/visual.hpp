@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Outputs people look at: coloured point clouds (PLY or PCD, for pcl_viewer, CloudCompare,
-/// MeshLab), triangle meshes (PLY) and orthographic pictures of cells (PNG, like the paper's
-/// Figures 2–4). Every file is written atomically.
+/// MeshLab), triangle meshes (PLY), orthographic top views of cells and the 3-D pictures of
+/// io/render.hpp (PNG, like the paper's Figures 2–4). Every file is written atomically.
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
@@ -46,6 +46,27 @@ struct PlotSeries {
 void write_line_plot_png(const std::string& path, const std::string& title, const std::string& x_label,
                          const std::string& y_label, const std::vector<PlotSeries>& series, int width_px = 900,
                          int height_px = 520);
+
+/// Text drawn onto an image when it is written: the baseline's left end at (x_px, y_px).
+struct PictureText {
+  std::string text;
+  int x_px = 0, y_px = 0;
+  double scale = 0.45;  ///< OpenCV's Hershey simplex font scale (0.45: about 10 pixels high)
+  Rgb colour = {30, 30, 30};
+};
+/// Pixels row by row (top first), and the texts io::write_png draws over them.
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<Rgb> pixels;
+  std::vector<PictureText> texts;
+  Rgb& at(int x, int y) { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+  const Rgb& at(int x, int y) const { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+/// Text width in pixels at `scale`, as the Hershey simplex font draws it (an upper bound, for
+/// laying out backgrounds without the font).
+int text_width_px(const std::string& text, double scale);
+/// The image as PNG with its texts drawn, atomically; FileError for another extension.
+void write_png(const std::string& path, const RgbImage& image);
 
 /// A colour per cluster id, distinct for neighbours, stable across runs.
 Rgb cluster_color(int id);

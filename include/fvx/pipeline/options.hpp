@@ -19,6 +19,12 @@ inline const double kDefaultResolution_m = Config{}.resolution_m;
 
 /// --resolution M in [0.001, 1] metres, default kDefaultResolution_m then `note`.
 OptionSpec resolution_option(const std::string& echo, const char* help, const std::string& note);
+/// --bounds x0,y0,z0,x1,y1,z1 (metres; or another option of that form), or empty;
+/// UsageError unless the minimum is below the maximum on every axis.
+std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::string& name = "bounds");
+/// `fvx nbv`'s search options: strategy, sensor, rays, sampling, refinement, polish,
+/// climb, near voids, view bounds, seed, threads and accumulation (the rest at defaults).
+nbv::Config read_search_options(const Args& args);
 /// --resolution's value, `fallback` when absent.
 double parse_resolution(const Args& args, double fallback);
 /// --max-time-diff S: stamps matched within S seconds (scan::LoadConfig's default).

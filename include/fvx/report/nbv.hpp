@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fvx/core/json.hpp"
+#include "fvx/io/visual.hpp"
 #include "fvx/nbv/loaded_arm.hpp"
 #include "fvx/nbv/nbv.hpp"
 #include "fvx/voids/clusters.hpp"
@@ -28,6 +29,13 @@ Json search_config_json(const nbv::Config& config, double target_size_m, int voi
 /// The capability map as loaded (file, links, hash, voxel, directions), where its base stands
 /// and the URDF (`urdf_path`, may be empty); null without one.
 Json arm_json(const std::string& path, const std::string& urdf_path, const nbv::LoadedArm& in);
+
+/// The utility colour of a rank in [0, 1]: red (low), yellow, green (high), as the paper's
+/// Figure 4.
+io::Rgb ramp(double rank);
+/// Each field cell's utility as its rank among the kept cells, in [0, 1] (utility spans
+/// orders of magnitude, so a linear scale would paint nearly all of it "low").
+std::vector<double> utility_ranks(const nbv::Result& r);
 
 /// The utility field (Result::utility_field) as a coloured cloud, .ply or .pcd: red (low),
 /// yellow, green (high) by rank among the kept cells; pruned cells grey.
