@@ -32,6 +32,7 @@ const CommandSpec kIntegrateSpec = {
         resolution_option("/config/resolution_m", "cell edge of a new map, metres", ", the paper's"),
         {"max-range", 0, "M", "cut rays longer than this, metres; their ends are not marked "
                               "occupied (default: no limit)", "/config/max_range_m", "", above(0, 1e6)},
+        pipeline::discretize_option("/config/discretize"),
         {"depth-min", 0, "M", "drop points closer than this along the optical axis, metres",
          "/config/filter/depth_min_m", dflt(kFilter.depth_min_m), in(0, 1e6)},
         {"depth-max", 0, "M", "drop points at or beyond this depth, metres (default: no limit)",
@@ -73,7 +74,7 @@ struct Options {
   scan::LoadConfig load;
   bool do_register = true;
   registration::Config reg;
-  bool timing = false, progress = false;
+  bool timing = false, progress = false, discretize = false;
   std::vector<std::string> scans;
   std::optional<io::BagQuery> bag;
 };
@@ -87,6 +88,7 @@ Options parse(const Args& args) {
   o.resolution_given = args.has("resolution");
   o.resolution_m = parse_resolution(args, kDefaultResolution_m);
   args.read("max-range", o.max_range_m);
+  o.discretize = args.has("discretize");
   args.read("depth-min", o.filter.depth_min_m);
   args.read("depth-max", o.filter.depth_max_m);
   args.read("downsample", o.filter.voxel_m);
@@ -124,6 +126,7 @@ pipeline::Config step_config(const Options& o, double resolution_m) {
   c.resolution_m = resolution_m;
   c.filter = o.filter;
   c.max_range_m = o.max_range_m;
+  c.discretize = o.discretize;
   c.register_scans = o.do_register;
   c.registration = o.reg;
   c.analyse = false;

@@ -59,6 +59,7 @@ const CommandSpec kReplaySpec = {
                  {"no-register", 0, nullptr, "integrate scans at their logged poses",
                   "/config/pipeline/register_scans"},
                  resolution_option("/config/pipeline/resolution_m", "map cell edge, metres", ", or the session's"),
+                 pipeline::discretize_option("/config/pipeline/discretize"),
                  {"bounds", 0, "x0,y0,z0,x1,y1,z1", "search space S, metres (default: the session's, else the "
                                                     "known cells' box)", "/config/pipeline/bounds_m"},
                  {"view-bounds", 0, "x0,y0,z0,x1,y1,z1", "the sensor stays in this box, metres (default: the "
@@ -181,6 +182,7 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   pc.resolution_m = parse_resolution(args, pc.resolution_m);
   pc.target_size_m = parse_target_size(args, pc.target_size_m);
   pc.hull_in_bounds = parse_void_hull(args, pc.hull_in_bounds);
+  pc.discretize = args.has("discretize");
   args.read("unknown-depth", nc.unknown_depth_cells);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");

@@ -16,6 +16,7 @@ Json config_json(const Config& c) {
           {"target_size_m", c.target_size_m},
           {"hull_in_bounds", c.hull_in_bounds},
           {"clear_beyond_range", c.clear_beyond_range},
+          {"discretize", c.discretize},
           {"min_void_width_cells", c.min_void_width_cells()},
           {"analyse", c.analyse},
           {"search", c.search}};

@@ -15,6 +15,11 @@ OptionSpec resolution_option(const std::string& echo, const char* help, const st
   return {"resolution", 'r', "M", help, echo, dflt(kDefaultResolution_m) + note, in(0.001, 1)};
 }
 
+OptionSpec discretize_option(const std::string& echo) {
+  return {"discretize", 0, nullptr, "OctoMap's discretised insertion: one ray per distinct endpoint cell, to its "
+                                    "centre (insertPointCloud's discretize; faster, a slightly different map)", echo};
+}
+
 OptionSpec max_time_diff_option() {
   return {"max-time-diff", 0, "S", "largest stamp difference when matching by timestamp, seconds",
           "/config/max_time_diff_s", dflt(scan::LoadConfig{}.max_time_diff_s), in(0, 1e6)};

@@ -66,7 +66,8 @@ map::Integration integrate_scan(State& state, const scan::Scan& scan, const Conf
   Stopwatch t0;
   const double range_m = config.max_range_m.value_or(config.nbv.sensor.depth_max_m);
   map::Integration integration =
-      state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m);
+      state.map.integrate(scan::to_world(scan), scan.T_world_sensor.translation().cast<float>(), range_m,
+                          config.discretize);
   r.integration = map::counts(integration);
   if (config.register_scans) {
     // Half the registration voxel keeps surfaces where they are (see fvx integrate).

@@ -109,6 +109,27 @@ TEST(CliSimulate, RegistrationLeavesExactSimulatedPosesAlone) {
   }
 }
 
+// --discretize (OctoMap's discretised insertion; the oracle tests compare it with OctoMap node
+// for node): the same occupied cells as the exact insertion, which also marks each distinct
+// endpoint cell once, fewer free updates since one ray goes to each cell's centre, another map.
+TEST(CliSimulate, DiscretizedIntegrationUpdatesTheSameEndpointCells) {
+  const TempDir dir;
+  ASSERT_EQ(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd").status, 0);
+  RunResult r = run_fvx(dir, "integrate --no-register -o exact.ot a.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json exact = json::parse(r.out);
+  r = run_fvx(dir, "integrate --no-register --discretize -o discrete.ot a.pcd");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json discrete = json::parse(r.out);
+  EXPECT_EQ(exact["config"]["discretize"], false);
+  EXPECT_EQ(discrete["config"]["discretize"], true);
+  const json& e = exact["results"]["scans"][0]["integration"];
+  const json& d = discrete["results"]["scans"][0]["integration"];
+  EXPECT_EQ(d["occupied_updates"], e["occupied_updates"]);
+  EXPECT_GT(d["free_updates"].get<int>(), 0);
+  EXPECT_NE(slurp(dir / "exact.ot"), slurp(dir / "discrete.ot"));
+}
+
 TEST(CliSimulate, APoseInsideASolidIsAWarning) {
   const TempDir dir;
   // Inside the 1.5 cm x− wall of the closed crate (0.55 … 0.565).

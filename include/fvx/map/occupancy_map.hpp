@@ -150,10 +150,14 @@ class OccupancyMap {
   /// `origin_world` to an endpoint marks the cells it crosses free and the endpoint's cell
   /// occupied (occupied wins over free within one scan; each cell is updated once per scan).
   /// Endpoints farther than `max_range_m` (infinity: no limit) cut the ray at that range and
-  /// mark nothing occupied.
+  /// mark nothing occupied. `discretize`: OctoMap's insertPointCloud(…, discretize = true) —
+  /// the scan's points are first replaced by the centres of the distinct cells they fall in,
+  /// one ray per cell (points outside the key space stay as they are, where OctoMap's
+  /// unchecked coordToKey would wrap them around); Integration::points then counts the
+  /// centres.
   Integration integrate(const std::vector<Eigen::Vector3f>& points_world,
                         const Eigen::Vector3f& origin_world,
-                        double max_range_m = std::numeric_limits<double>::infinity());
+                        double max_range_m = std::numeric_limits<double>::infinity(), bool discretize = false);
 
   /// Sets a cell to a state directly: Free and Occupied at the clamping bounds, Unknown by
   /// deleting it. For ground truth and tests; scans go through integrate().

@@ -27,6 +27,8 @@ std::optional<Eigen::AlignedBox3d> parse_bounds(const Args& args, const std::str
 nbv::Config read_search_options(const Args& args);
 /// --resolution's value, `fallback` when absent.
 double parse_resolution(const Args& args, double fallback);
+/// --discretize: Config::discretize (OctoMap's discretised insertion).
+OptionSpec discretize_option(const std::string& echo);
 /// --max-time-diff S: stamps matched within S seconds (scan::LoadConfig's default).
 OptionSpec max_time_diff_option();
 /// --trajectory FILE|DIR (for `fvx replay` or `fvx integrate`), --pose-format

@@ -41,6 +41,9 @@ struct Config {
   /// without an endpoint (OctoMap's maxrange), as a laser's max-range returns do; false:
   /// the filter drops them (a Kinect's pixels without depth carry no ray).
   bool clear_beyond_range = false;
+  /// OctoMap's discretised insertion (map::OccupancyMap::integrate): one ray per distinct
+  /// endpoint cell, to its centre; faster, and a slightly different map. false: exact.
+  bool discretize = false;
   nbv::Config nbv;                                 ///< the search, its sensor model and strategy
   /// Steps 4–6, frontiers, voids and frontier-voids; false: the step ends with the map
   /// (fvx integrate), and the search is off too.

@@ -49,6 +49,7 @@ struct MatchCase {
   double far_point_m;   // > 0: one point this far away makes the key box too large for a
                         // flat bitmap, so the sparse blocks are used
   double resolution_m;
+  bool discretize = false;  // OctoMap's insertPointCloud(…, discretize = true) and --discretize
 };
 
 class IntegrateMatchesOctoMap : public ::testing::TestWithParam<MatchCase> {};
@@ -66,9 +67,13 @@ TEST_P(IntegrateMatchesOctoMap, SameTreeAfterSeveralScans) {
     // 40 m on every axis at 2.5 cm: 1600³ ≈ 4·10⁹ cells, beyond the flat bitmap's 2³⁰.
     const float far = float(c.far_point_m);
     if (far > 0) points.push_back(origin + Eigen::Vector3f(far, far, -far));
-    map.integrate(points, origin, max_range_m);
+    const auto result = map.integrate(points, origin, max_range_m, c.discretize);
     reference.insertPointCloud(to_octomap(points), octomap::point3d(origin.x(), origin.y(), origin.z()),
-                               std::isfinite(max_range_m) ? max_range_m : -1.0);
+                               std::isfinite(max_range_m) ? max_range_m : -1.0, false, c.discretize);
+    // Discretised, the scan is one ray per distinct cell: fewer than the points.
+    if (c.discretize) {
+      EXPECT_LT(result.points, points.size());
+    }
   }
   // .ot holds the full tree with log-odds: equal bytes mean equal trees.
   map.save(dir / "fvx.ot");
@@ -82,7 +87,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(MatchCase{"no_range_limit", std::numeric_limits<double>::infinity(), 3000, 0, 0.05},
                       MatchCase{"range_limit", 1.5, 3000, 0, 0.05},
                       MatchCase{"threaded", 4.0, 12000, 0, 0.05},
-                      MatchCase{"sparse_blocks", std::numeric_limits<double>::infinity(), 2000, 40.0, 0.025}),
+                      MatchCase{"sparse_blocks", std::numeric_limits<double>::infinity(), 2000, 40.0, 0.025},
+                      MatchCase{"discretized", std::numeric_limits<double>::infinity(), 6000, 0, 0.1, true},
+                      MatchCase{"discretized_range_limit", 1.5, 6000, 0, 0.1, true},
+                      MatchCase{"discretized_threaded", 4.0, 30000, 0, 0.1, true},
+                      MatchCase{"discretized_sparse_blocks", std::numeric_limits<double>::infinity(), 4000, 40.0, 0.05,
+                                true}),
     [](const auto& test_info) { return std::string(test_info.param.name); });
 
 // A map loaded from a file, then integrated: the same tree as OctoMap's from the same file.
