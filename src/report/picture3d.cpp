@@ -52,7 +52,8 @@ std::vector<OptionSpec> picture_options(bool session, const char* picture_help, 
     specs.push_back({"picture-top", 0, "FILE.png", top_help, kNotASetting});
   }
   specs.push_back({"picture-eye", 0, "X,Y,Z", "where the 3-D picture's camera stands, metres (default: on the robot's "
-                                               "side of the search space, 35 degrees above it)", kNotASetting});
+                                               "side of the search space where the command knows one, else on its "
+                                               "-x,-y side; 35 degrees above it)", kNotASetting});
   specs.push_back({"picture-target", 0, "X,Y,Z", "where the 3-D picture's camera looks, metres (default: the centre "
                                                   "of the search space)", kNotASetting});
   return specs;
