@@ -92,11 +92,35 @@ void update_tree(Tree& tree, const Bitmap& free_cells, const std::vector<RayEnd>
     std::sort(result.changes.begin(), result.changes.end(), by_key);
 }
 
+/// The distinct keys of `packed` (x | y << 16 | z << 32), in any order: by a bitmap over their
+/// box when it has at most 64 cells per key (its scan then costs a word per key at most), else
+/// by sorting.
+void deduplicate(std::vector<std::uint64_t>& packed) {
+  std::array<int, 3> lo{0xFFFF, 0xFFFF, 0xFFFF}, hi{0, 0, 0};
+  for (const std::uint64_t k : packed)
+    for (int i = 0; i < 3; ++i) {
+      lo[std::size_t(i)] = std::min(lo[std::size_t(i)], int((k >> (16 * i)) & 0xFFFF));
+      hi[std::size_t(i)] = std::max(hi[std::size_t(i)], int((k >> (16 * i)) & 0xFFFF));
+    }
+  if (packed.empty() || DenseKeyBitmap::bits_for(lo, hi) > 64 * std::uint64_t(packed.size())) {
+    std::sort(packed.begin(), packed.end());
+    packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+    return;
+  }
+  DenseKeyBitmap cells(lo, hi);
+  for (const std::uint64_t k : packed)
+    cells.insert(octomap::OcTreeKey(std::uint16_t(k), std::uint16_t(k >> 16), std::uint16_t(k >> 32)));
+  packed.clear();
+  cells.for_each([&](const octomap::OcTreeKey& k) {
+    packed.push_back(std::uint64_t(k[0]) | std::uint64_t(k[1]) << 16 | std::uint64_t(k[2]) << 32);
+  });
+}
+
 /// OctoMap's computeDiscreteUpdate: each distinct cell of the points once, at its centre
 /// (keyToCoord, as OctoMap computes it). The order of the centres does not matter: a scan's
-/// update is the same for any order of its rays. Keys are sorted, not hashed: packed into 48
-/// bits, a sort of 3·10⁵ keys takes a few milliseconds. Non-finite points and points outside
-/// the key space are kept as they are (integrate counts them as out of the map).
+/// update is the same for any order of its rays. Keys are deduplicated without a hash set
+/// (deduplicate). Non-finite points and points outside the key space are kept as they are
+/// (integrate counts them as out of the map).
 std::vector<Eigen::Vector3f> discretized(const Tree& tree, const std::vector<Eigen::Vector3f>& points_world) {
   std::vector<std::uint64_t> packed;
   std::vector<Eigen::Vector3f> out;
@@ -108,8 +132,7 @@ std::vector<Eigen::Vector3f> discretized(const Tree& tree, const std::vector<Eig
     else
       out.push_back(p);
   }
-  std::sort(packed.begin(), packed.end());
-  packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+  deduplicate(packed);
   for (const std::uint64_t k : packed) {
     const octomap::point3d c = tree.keyToCoord(octomap::OcTreeKey(std::uint16_t(k), std::uint16_t(k >> 16),
                                                                   std::uint16_t(k >> 32)));
