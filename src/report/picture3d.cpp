@@ -25,7 +25,7 @@ const io::Rgb kBoundsGrey = {175, 175, 175};
 const io::Rgb kInk = {30, 30, 30};
 constexpr double kElevation_deg = 35.0;
 constexpr double kUtilityRankShown = 0.5;  ///< the utility field's cells drawn: rank at least this
-constexpr int kTileWidth = 320, kTileHeight = 240;
+constexpr int kTileWidth = 320, kTileHeight = 240, kFullWidth = 960, kFullHeight = 720;
 
 std::optional<Eigen::Vector3d> read_point(const Args& args, const char* name) {
   if (!args.has(name)) return std::nullopt;
@@ -301,15 +301,24 @@ Json picture_json(const std::string& path, const io::PictureCamera& camera) {
           {"height_px", camera.height_px}};
 }
 
+namespace {
+
+// The request's 3-D picture at full size, and the camera it was seen from.
+Json write_full_picture(const PictureRequest& request, const PictureScene& scene) {
+  const io::PictureCamera camera = picture_camera(scene, request, kFullWidth, kFullHeight);
+  io::write_png(request.path, render_picture(scene, camera, true));
+  return picture_json(request.path, camera);
+}
+
+}  // namespace
+
 Json write_analysis_pictures(const PictureRequest& request, const map::OccupancyMap& map,
                              const frontier_voids::Analysis& a, bool with_voids) {
   if (!request.top_path.empty()) write_picture(request.top_path, map, a, with_voids);
   if (request.path.empty()) return nullptr;
   PictureScene scene = picture_scene(map.occupied_centers(), map.resolution_m(), a);
   scene.voids_analysed = with_voids;
-  const io::PictureCamera camera = picture_camera(scene, request, 960, 720);
-  io::write_png(request.path, render_picture(scene, camera, true));
-  return picture_json(request.path, camera);
+  return write_full_picture(request, scene);
 }
 
 Json write_search_pictures(const PictureRequest& request, const map::OccupancyMap& map,
@@ -322,9 +331,7 @@ Json write_search_pictures(const PictureRequest& request, const map::OccupancyMa
   scene.sensor = sensor;
   if (!r.views.empty()) scene.chosen = r.views.front().T_world_sensor;
   scene.robot_m = base_m ? base_m : scene.chosen ? std::optional<Eigen::Vector3d>(scene.chosen->translation()) : std::nullopt;
-  const io::PictureCamera camera = picture_camera(scene, request, 960, 720);
-  io::write_png(request.path, render_picture(scene, camera, true));
-  return picture_json(request.path, camera);
+  return write_full_picture(request, scene);
 }
 
 PictureScene view_scene(const std::vector<Eigen::Vector3f>& occupied_m, double resolution_m,
@@ -353,7 +360,7 @@ void SessionPictures::add(int view, const std::vector<Eigen::Vector3f>& occupied
     const std::filesystem::path folder = std::filesystem::path(dir_) / "pictures";
     create_folder(folder.string());
     io::write_png((folder / session::view_file_name(view, ".png")).string(),
-                  render_picture(scene, picture_camera(scene, request_, 960, 720), true));
+                  render_picture(scene, picture_camera(scene, request_, kFullWidth, kFullHeight), true));
   }
   tiles_.push_back(render_picture(scene, picture_camera(scene, request_, kTileWidth, kTileHeight), false));
   captions_.push_back("view " + std::to_string(view + 1) + (scene.chosen || !step.searched ? "" : " (no next view)"));
