@@ -29,6 +29,14 @@ BuildMethod parse_build_method(const std::string& name, const std::string& what)
   throw UsageError(what + " '" + name + "': expected fk-witness, fk-seeded-ik or exhaustive-ik");
 }
 
+const char* to_string(MapLayout layout) { return layout == MapLayout::Turn ? "turn" : "grid"; }
+
+MapLayout parse_map_layout(const std::string& name, const std::string& what) {
+  if (name == "grid") return MapLayout::Grid;
+  if (name == "turn") return MapLayout::Turn;
+  throw UsageError(what + " '" + name + "': expected grid or turn");
+}
+
 void parse_shard(const std::string& text, const std::string& what, BuildConfig& config) {
   const auto slash = text.find('/');
   if (slash == std::string::npos) throw UsageError(what + ": expected I/N, e.g. 3/8");
@@ -47,17 +55,18 @@ std::vector<std::string> BuildConfig::validate() const {
   if (!(target_recall > 0.0 && target_recall <= 1.0)) problems.push_back("target_recall must be in (0, 1]");
   if (turns_per_fk < 1 || turns_per_fk > 4096) problems.push_back("turns_per_fk must be 1 to 4096");
   if (shard_count < 1 || shard_index >= shard_count) problems.push_back("shard_index must be below shard_count");
+  if (layout == MapLayout::Turn && method != BuildMethod::FkWitness) problems.push_back("the turn layout needs the fk-witness method");
   return problems;
 }
 
-namespace {
-
-std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
+std::uint64_t seed_mix(std::uint64_t a, std::uint64_t b) {
   std::uint64_t x = a ^ (b + 0x9E3779B97F4A7C15ull + (a << 6) + (a >> 2));
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
   return x ^ (x >> 31);
 }
+
+namespace {
 
 struct Candidate {
   std::int64_t voxel;
@@ -73,7 +82,7 @@ namespace {
 /// centres on the lattice k·v.
 CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const DirectionSet& directions) {
   const double v = config.voxel_m;
-  std::mt19937_64 rng(mix(config.seed, 1));
+  std::mt19937_64 rng(seed_mix(config.seed, 1));
   Eigen::AlignedBox3d reach;
   for (std::size_t i = 0; i < config.workspace_samples; ++i) reach.extend(arm.fk(arm.random_configuration(rng)).translation());
   CapabilityHeader h;
@@ -99,6 +108,7 @@ CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const Dir
   h.shard_index = config.shard_index;
   h.shard_count = config.shard_count;
   h.fvx_version = version();
+  if (config.layout == MapLayout::Turn) h.layout = "turn", h.turn = TurnFrame::of(arm, v, config.directions);
   return h;
 }
 
@@ -122,7 +132,7 @@ std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config,
     return candidates;
   }
   std::map<std::pair<std::int64_t, int>, Eigen::VectorXd> proposed;
-  std::mt19937_64 fk_rng(mix(config.seed, 2));
+  std::mt19937_64 fk_rng(seed_mix(config.seed, 2));
   for (std::size_t i = 0, n = config.fk_samples ? config.fk_samples : 400000; i < n; ++i) {
     const Eigen::VectorXd q = arm.random_configuration(fk_rng);
     const Eigen::Isometry3d T = arm.fk(q);
@@ -192,7 +202,7 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
     auto work = [&] {
       std::size_t evaluations = 0;
       for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
-        std::mt19937_64 rng(mix(mix(config.seed, 3 + round), c));
+        std::mt19937_64 rng(seed_mix(seed_mix(config.seed, 3 + round), c));
         draw_witnesses(arm, config, map, rng, c * kChunk, std::min(n, (c + 1) * kChunk), landed.data(), evaluations);
       }
       fk_evaluations += evaluations;
@@ -229,7 +239,10 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
   CapabilityMap map(header_for(arm, config, directions));
   if (config.method == BuildMethod::FkWitness) {
     BuildStats s;
-    build_witnesses(arm, config, map, s, progress, cancel);
+    if (config.layout == MapLayout::Turn)
+      build_turn_witnesses(arm, config, map, s, progress, cancel);
+    else
+      build_witnesses(arm, config, map, s, progress, cancel);
     if (stats) *stats = s;
     return map;
   }
@@ -248,7 +261,7 @@ CapabilityMap build_capability_map(const Arm& arm, const BuildConfig& config, Bu
     for (std::size_t i; (i = next.fetch_add(1)) < candidates.size();) {
       if (cancel && cancel->load()) return;
       const Candidate& c = candidates[i];
-      std::mt19937_64 bit_rng(mix(mix(config.seed, std::uint64_t(c.voxel)), std::uint64_t(c.direction)));
+      std::mt19937_64 bit_rng(seed_mix(seed_mix(config.seed, std::uint64_t(c.voxel)), std::uint64_t(c.direction)));
       const IkResult r = solve_viewing_ik(arm, map.center_of(c.voxel), directions[c.direction], ik, bit_rng,
                                           c.seed_q.size() ? &c.seed_q : nullptr);
       reached[i] = r.reached;

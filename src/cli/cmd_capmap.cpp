@@ -51,9 +51,11 @@ const CommandSpec kCapmapSpec = {
          dflt(kBuild.ik_restarts), in(0, 1000)},
         {"fk-per-witness", 0, nullptr, "build, fk-witness: forward kinematics for every witness instead of one per "
          "group turned about the first joint's axis (the same bits, slower: a check)", "/config/use_first_joint_turn"},
+        {"layout", 0, "NAME", "build, fk-witness: grid (default: bits per voxel) or turn (one witness per cell "
+         "of the first joint's turn, expanded on load; needs a revolute first joint)", "/config/layout"},
         {"exhaustive", 0, nullptr, "build: the same as --method exhaustive-ik (a slow baseline)", "/results/header/method"},
         threads_option("/config/threads", "build: threads"),
-        {"shard", 0, "I/N", "build: only z-slab I of N (1-based); merge the parts later",
+        {"shard", 0, "I/N", "build: only z-slab I of N (1-based; turn layout: the height cells = I-1 mod N); merge the parts later",
          "/results/header/shard_index"},
         {"point", 0, "x,y,z", "query: a position in the base frame, metres", "/results/point_m"},
         {"direction", 0, "x,y,z", "query: a viewing direction (need not be unit)", "/results/direction"},
@@ -83,6 +85,8 @@ capmap::Arm load_arm(const std::string& urdf, const std::string& base, const std
 /// Options given that the chosen method does not use: said, not silently dropped.
 std::vector<std::string> ignored_build_options(const Args& args, bool witness) {
   std::vector<std::string> ignored;
+  if (args.has("fk-per-witness") && args.has("layout") && args.get("layout") == "turn")
+    ignored.push_back("--fk-per-witness is used by the grid layout only");
   if (witness && args.has("restarts")) ignored.push_back("--restarts is used by the IK methods only");
   for (const char* name : {"target-recall", "fk-per-witness"})
     if (!witness && args.has(name)) ignored.push_back(std::string("--") + name + " is used by fk-witness only");
@@ -109,6 +113,7 @@ int build(const Args& args, Json& report) {
   if (args.has("exhaustive")) c.method = capmap::BuildMethod::ExhaustiveIk;
   if (args.has("shard")) capmap::parse_shard(args.get("shard"), "--shard", c);
   c.use_first_joint_turn = !args.has("fk-per-witness");
+  if (args.has("layout")) c.layout = capmap::parse_map_layout(args.get("layout"), "--layout");
   throw_if_problems("fvx capmap build", c.validate());
   const std::vector<std::string> warnings = ignored_build_options(args, c.method == capmap::BuildMethod::FkWitness);
   for (const auto& warning : warnings) std::cerr << "fvx capmap build: warning: " << warning << "\n";

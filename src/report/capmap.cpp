@@ -20,13 +20,19 @@ std::size_t bits_of(const std::vector<std::uint64_t>& words) {
 }  // namespace
 
 Json capmap_header_json(const capmap::CapabilityHeader& h) {
-  return {{"base_link", h.base_link},   {"tip_link", h.tip_link},   {"mount_xyz_rpy", h.mount_xyz_rpy},
+  Json j = {{"base_link", h.base_link},   {"tip_link", h.tip_link},   {"mount_xyz_rpy", h.mount_xyz_rpy},
           {"viewing_axis", vec_json(h.viewing_axis)},  {"urdf_hash", h.urdf_hash},
           {"voxel_m", h.voxel_m},       {"origin_m", vec_json(h.origin_m)},      {"dims", h.dims},
           {"directions", h.directions}, {"position_tolerance_m", h.position_tolerance_m},
           {"angle_tolerance_deg", h.angle_tolerance_rad * 180.0 / M_PI},      {"method", h.method},
           {"seed", h.seed},             {"shard_index", h.shard_index},     {"shard_count", h.shard_count},
-          {"fvx_version", h.fvx_version}};
+          {"fvx_version", h.fvx_version}, {"layout", h.layout}};
+  if (h.layout == "turn")
+    j["turn"] = {{"point_m", vec_json(h.turn.point_base)}, {"axis", vec_json(h.turn.axis_base)},
+                 {"x_axis", vec_json(h.turn.x_base)},
+                 {"limits_deg", {h.turn.lower_rad * 180.0 / M_PI, h.turn.upper_rad * 180.0 / M_PI}},
+                 {"cell_m", h.turn.cell_m}, {"relative_directions", h.turn.relative_directions}};
+  return j;
 }
 
 Json capmap_info_json(const capmap::CapabilityMap& map) {
@@ -38,6 +44,7 @@ Json capmap_info_json(const capmap::CapabilityMap& map) {
     histogram[std::min<std::size_t>(9, n * 10 / std::size_t(map.header().directions))] += 1;
   }
   return {{"header", capmap_header_json(map.header())}, {"voxels", map.voxel_count()}, {"bits", bits},
+          {"turn_witnesses", map.turn_witnesses().size()},
           {"reachability_index_histogram", {{"bin_width_percent", 10}, {"voxels", histogram}}}};
 }
 
@@ -99,7 +106,8 @@ Json capmap_first_joint_axis_json(const capmap::Arm& arm) {
 Json capmap_build_config_json(const capmap::BuildConfig& c) {
   return {{"seed", c.seed}, {"method", capmap::to_string(c.method)}, {"fk_samples", c.fk_samples},
           {"target_recall", c.target_recall}, {"ik_restarts", c.ik_restarts}, {"threads", c.threads},
-          {"turns_per_fk", c.turns_per_fk}, {"use_first_joint_turn", c.use_first_joint_turn}};
+          {"turns_per_fk", c.turns_per_fk}, {"use_first_joint_turn", c.use_first_joint_turn},
+          {"layout", capmap::to_string(c.layout)}};
 }
 
 Json capmap_build_json(const capmap::CapabilityMap& map, const capmap::BuildStats& stats, double seconds) {
@@ -110,6 +118,7 @@ Json capmap_build_json(const capmap::CapabilityMap& map, const capmap::BuildStat
           {"ik_iterations", stats.ik_iterations},
           {"fk_samples", stats.fk_samples},
           {"fk_evaluations", stats.fk_evaluations},
+          {"turn_witnesses", map.turn_witnesses().size()},
           {"estimated_recall", stats.estimated_recall},
           {"seconds", seconds}};
 }

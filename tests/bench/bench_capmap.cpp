@@ -63,6 +63,40 @@ int main(int argc, char** argv) {
     }
   }
 
+  // The turn layout (witnesses in the first joint's coordinates, expanded on load) against the
+  // grid at 5, 2.5 and 1.25 cm: build, file, load, and how many of each other's bits they hold.
+  for (const double voxel_m : {0.05, 0.025, 0.0125}) {
+    BuildConfig grid_config;
+    grid_config.voxel_m = voxel_m;
+    t = std::chrono::steady_clock::now();
+    const CapabilityMap grid = build_capability_map(arm, grid_config);
+    const double grid_s = seconds_since(t);
+    grid.save(path);
+    const double grid_kb = std::filesystem::file_size(path) / 1024.0;
+    t = std::chrono::steady_clock::now();
+    CapabilityMap::load(path);
+    const double grid_load_s = seconds_since(t);
+    grid_config.layout = MapLayout::Turn;
+    t = std::chrono::steady_clock::now();
+    BuildStats turn_stats;
+    const CapabilityMap turn = build_capability_map(arm, grid_config, &turn_stats);
+    const double turn_s = seconds_since(t);
+    turn.save(path);
+    t = std::chrono::steady_clock::now();
+    CapabilityMap::load(path);
+    const double turn_load_s = seconds_since(t);
+    std::size_t grid_bits = 0, turn_bits = 0, shared = 0;
+    for (const auto& [voxel, words] : grid.voxels())
+      for (int d = 0; d < 200; ++d) grid_bits += grid.reachable(voxel, d), shared += grid.reachable(voxel, d) && turn.reachable(voxel, d);
+    for (const auto& [voxel, words] : turn.voxels())
+      for (int d = 0; d < 200; ++d) turn_bits += turn.reachable(voxel, d);
+    std::printf("youBot, %.2f cm: grid %.2f s, %.0f KB, load %.3f s; turn layout %.2f s (%zu configurations, %zu "
+                "witnesses), %.0f KB, load %.3f s; turn holds %.1f %% of the grid's bits, grid %.1f %% of the turn's\n",
+                voxel_m * 100, grid_s, grid_kb, grid_load_s, turn_s, turn_stats.fk_samples, turn.turn_witnesses().size(),
+                std::filesystem::file_size(path) / 1024.0, turn_load_s, 100.0 * shared / grid_bits,
+                100.0 * shared / turn_bits);
+  }
+
   // The same z-slab (the middle of 8) both ways.
   config.shard_count = 8;
   config.shard_index = 4;

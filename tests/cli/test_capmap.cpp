@@ -73,6 +73,38 @@ TEST(CliCapmap, BuildInfoQueryExportAndShards) {
   EXPECT_EQ(json::parse(r.out)["warnings"].size(), 1u);
 }
 
+// --layout turn: the file holds witnesses in the first joint's coordinates (format version 3);
+// info, query and eval read it as any map; shards merge into the single run's bytes.
+TEST(CliCapmap, TheTurnLayoutIsBuiltQueriedAndMergedAsAnyMap) {
+  const TempDir dir;
+  const std::string build = "capmap build " + fvx_arm() + " --base base_link --tip kinect_optical --voxel 0.15 "
+                            "--directions 50 --layout turn";
+  RunResult r = run_fvx(dir, build + " --fk-per-witness -o turn.fcm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json built = json::parse(r.out);
+  EXPECT_EQ(built["config"]["layout"], "turn");
+  EXPECT_GT(built["results"]["turn_witnesses"].get<int>(), 100);
+  EXPECT_EQ(built["results"]["fk_evaluations"], built["results"]["fk_samples"]);
+  EXPECT_NE(r.err.find("warning: --fk-per-witness is used by the grid layout only"), std::string::npos) << r.err;
+  r = run_fvx(dir, "capmap info turn.fcm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json info = json::parse(r.out)["results"];
+  EXPECT_EQ(info["header"]["layout"], "turn");
+  EXPECT_EQ(info["turn_witnesses"], built["results"]["turn_witnesses"]);
+  EXPECT_EQ(info["bits"], built["results"]["bits"]);
+  EXPECT_NEAR(info["header"]["turn"]["limits_deg"][1].get<double>(), 2.967 * 180 / M_PI, 1e-9);  // the yaw joint's
+  EXPECT_NEAR(info["header"]["turn"]["limits_deg"][0].get<double>(), -2.967 * 180 / M_PI, 1e-9);
+  r = run_fvx(dir, "capmap query turn.fcm --point 0.45,0,0.75");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_fvx(dir, "capmap eval turn.fcm " + fvx_arm() + " --samples 300");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GE(json::parse(r.out)["results"]["precision"].get<double>(), 0.95);
+  for (int i = 1; i <= 3; ++i)
+    ASSERT_EQ(run_fvx(dir, build + " --shard " + std::to_string(i) + "/3 -o part" + std::to_string(i) + ".fcm").status, 0);
+  ASSERT_EQ(run_fvx(dir, "capmap merge part3.fcm part1.fcm part2.fcm -o merged.fcm").status, 0);
+  EXPECT_TRUE(slurp(dir / "merged.fcm") == slurp(dir / "turn.fcm")) << "merged shards differ from the single run";
+}
+
 TEST(CliCapmapRealData, YoubotMapAtFiveCentimetresIsPrecise) {
   FVX_REAL_DATA_OR_SKIP(urdf, "arms/youbot_arm.urdf");
   const TempDir dir;
@@ -90,6 +122,9 @@ TEST(CliCapmapRealData, YoubotMapAtFiveCentimetresIsPrecise) {
 TEST(CliCapmap, BadInputIsRefusedOnOneLine) {
   const TempDir dir;
   std::ofstream(dir / "broken.urdf") << "<robot name='x'><link name='a'";
+  std::ofstream(dir / "slide.urdf") << R"(<robot name="slide"><link name="base"/><link name="sensor"/>
+    <joint name="slide" type="prismatic"><parent link="base"/><child link="sensor"/>
+      <axis xyz="1 0 0"/><limit lower="0" upper="0.5" effort="1" velocity="1"/></joint></robot>)";
   ASSERT_EQ(run_fvx(dir, "capmap build " + fvx_arm() + " --base base_link --tip kinect_optical --voxel 0.2 "
                          "--directions 20 --fk-samples 2000 -o good.fcm").status, 0);
   const std::string good = slurp(dir / "good.fcm");
@@ -108,6 +143,10 @@ TEST(CliCapmap, BadInputIsRefusedOnOneLine) {
       {"capmap build broken.urdf --base a --tip a --voxel -1 -o x.fcm", 2, "--voxel"},
       {"capmap build missing.urdf --base a --tip a --shard 4/3 -o x.fcm", 2, "--shard"},
       {"capmap build missing.urdf --base a --tip a --angle-tolerance 400 -o x.fcm", 2, "--angle-tolerance"},
+      {"capmap build missing.urdf --base a --tip a --layout rings -o x.fcm", 2, "--layout"},
+      {"capmap build " + arm + " --base base_link --tip kinect_optical --layout turn --method fk-seeded-ik -o x.fcm", 2,
+       "fk-witness"},
+      {"capmap build slide.urdf --base base --tip sensor --voxel 0.2 --layout turn -o x.fcm", 1, "not revolute"},
       {"capmap info truncated.fcm", 1, "truncated.fcm"},
       {"capmap info flipped.fcm", 1, "flipped.fcm"},
       {"capmap query good.fcm --point 1,2", 2, "--point"},

@@ -9,12 +9,14 @@
 /// each point, so the bitset is the data; the reachability index is 100 · reachable / N.
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "fvx/capmap/arm.hpp"
+#include "fvx/capmap/turn_layout.hpp"
 
 namespace fvx::capmap {
 
@@ -27,6 +29,11 @@ class DirectionSet {
   const Eigen::Vector3d& operator[](int i) const { return directions_[std::size_t(i)]; }
   /// The index of the direction nearest to `d` (unit); brute force over N, about 0.2 µs at 200.
   int nearest(const Eigen::Vector3d& d) const;
+  /// The same index as nearest(), searching only the directions whose polar angle is close
+  /// enough to beat the best found (|θᵢ − θ| ≤ the angle to it): about N/4 dot products
+  /// instead of N, fewer with `hint` (an index near the answer, e.g. the last one of a
+  /// sweep). The oracle of it is nearest() (test).
+  int nearest_banded(const Eigen::Vector3d& d, int hint = -1) const;
   /// The indices of the directions within `angle_rad` of `d` (unit), ascending.
   std::vector<int> within(const Eigen::Vector3d& d, double angle_rad) const;
   /// sqrt(4π / N): the mean angular spacing, radians.
@@ -34,6 +41,7 @@ class DirectionSet {
 
  private:
   std::vector<Eigen::Vector3d> directions_;
+  std::vector<double> radial_;  ///< sqrt(x² + y²) of each direction (nearest_banded's bound)
 };
 
 /// Everything a map file says about how it was made.
@@ -52,6 +60,11 @@ struct CapabilityHeader {
   std::uint64_t seed = 1;
   std::uint32_t shard_index = 0, shard_count = 1;   ///< which voxels this file holds (z-slabs)
   std::string fvx_version;
+  /// "grid": bits per voxel (format version 2); "turn": one witness per reduced cell of the
+  /// first joint's turn (turn_layout.hpp, format version 3), expanded into the bits on load.
+  /// A turn layout's shard holds the witnesses whose height cell is ≡ shard_index mod count.
+  std::string layout = "grid";
+  TurnFrame turn;  ///< the turn layout's frame and cells
 };
 
 /// The arm settings a map was built with (links, mount, viewing axis), to load its URDF again.
@@ -70,6 +83,12 @@ class CapabilityMap {
   Eigen::Vector3d center_of(std::int64_t voxel) const;
 
   void set(std::int64_t voxel, int direction);
+  /// ORs a voxel's ceil(N/64) direction words into its bits.
+  void set_words(std::int64_t voxel, const std::uint64_t* words);
+  /// Turn layout: keeps the witnesses (one per reduced cell), sorted by turn_cell, and
+  /// expands them into the bits (expand_turn_witnesses, at most `max_steps` steps).
+  void set_turn_witnesses(std::vector<TurnWitness> witnesses, double max_steps = INFINITY);
+  const std::vector<TurnWitness>& turn_witnesses() const { return turn_witnesses_; }
   bool reachable(std::int64_t voxel, int direction) const;
   /// Is `p_base` reachable looking along `d_base` (unit)? Nearest voxel, nearest direction.
   bool reachable(const Eigen::Vector3d& p_base, const Eigen::Vector3d& d_base) const;
@@ -107,6 +126,7 @@ class CapabilityMap {
   CapabilityHeader header_;
   DirectionSet directions_;
   std::map<std::int64_t, std::vector<std::uint64_t>> voxels_;
+  std::vector<TurnWitness> turn_witnesses_;
 };
 
 }  // namespace fvx::capmap
