@@ -9,6 +9,7 @@ packages=(
   libcgal-dev libembree-dev liburdfdom-dev libtinyxml-dev liborocos-kdl-dev libnanoflann-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libtf2-dev  # ROS 1 bags, without ROS
   libgtest-dev libgmock-dev libbenchmark-dev
+  parallel slurm-wlm munge  # fvx batch plans run by GNU parallel and by a local Slurm (tests)
   clang libclang-rt-dev llvm  # scripts/sanitize.sh and scripts/fuzz.sh: ASan, UBSan, libFuzzer, symbolizer
 )
 

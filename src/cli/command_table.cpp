@@ -22,6 +22,7 @@ const std::vector<Command>& commands() {
       {kExploreSpec, run_explore},
       {kReplaySpec, run_replay},
       {kSimulateSpec, run_simulate},
+      {batch_spec(), run_batch},
   };
   return table;
 }

@@ -38,5 +38,8 @@ int run_simulate(const Args& args);
 int run_explore(const Args& args);
 extern const CommandSpec kReplaySpec;
 int run_replay(const Args& args);
+/// Built from capmap build's options (kCapmapSpec) on first use.
+const CommandSpec& batch_spec();
+int run_batch(const Args& args);
 
 }  // namespace fvx::cli

@@ -3,6 +3,8 @@
 // command line comes back as given.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -121,6 +123,19 @@ TEST(Echo, EveryCommandsReportHoldsEveryOptionsEffectiveValue) {
          "--fk-samples 2000 --restarts 3 --position-tolerance 0.004 --seed 7 --threads 1 -o arm.fcm";
   expect_echoes(run("capmap build", args), "capmap", args,
                 [](const cli::OptionSpec& o) { return std::string(o.help).rfind("build", 0) == 0; });
+
+  args = "'" + source("data/arms/fvx-arm.urdf") + "' --base base_link --tip kinect_optical --voxel 0.2 --directions 20 "
+         "--shards 2 --map m.fcm -o plan";
+  expect_echoes(run("batch capmap", args), "batch", args, [](const cli::OptionSpec& o) {
+    return std::string(o.name) != "joblog" && std::string(o.name) != "list";
+  });
+  std::ofstream(dir / "sequences.txt") << "session/\n";
+  args = "--list sequences.txt --map t.csv -o rplan -- --no-capmap";
+  expect_echoes(run("batch replay", args), "batch", args, [](const cli::OptionSpec& o) {
+    return std::string(o.name) == "list" || std::string(o.name) == "map";
+  });
+  args = "plan --joblog none.log";
+  expect_echoes(run("batch status", args), "batch", args, [](const cli::OptionSpec& o) { return std::string(o.name) == "joblog"; });
 }
 
 }  // namespace
