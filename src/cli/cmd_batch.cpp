@@ -4,6 +4,7 @@
 #include "command_table.hpp"
 #include "fvx/batch/plan.hpp"
 #include "fvx/capmap/build.hpp"
+#include "fvx/core/atomic_file.hpp"  // require_readable_file
 #include "fvx/core/error.hpp"
 #include "fvx/report/batch.hpp"
 #include "report.hpp"
@@ -47,6 +48,7 @@ namespace {
 int plan_capmap(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx batch capmap: give one URDF");
   if (!args.has("output") || !args.has("shards")) throw UsageError("fvx batch capmap: --shards and -o are required");
+  require_readable_file(args.positional[1]);  // else every task would fail on it
   std::vector<std::pair<std::string, std::string>> options;  // checked here, so that no task fails on them
   for (const OptionSpec& o : batch_spec().options)
     if (passed_on(o) && args.has(o.name)) {

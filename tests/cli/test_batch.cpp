@@ -182,6 +182,7 @@ TEST(CliBatch, StatusNamesFailedTasksAndBadPlansAreRefused) {
       {"batch capmap " + fvx_arm() + kArmOptions + " --shards 0 -o p2", 2, "--shards"},
       {"batch capmap " + fvx_arm() + kArmOptions + " --voxel -1 --shards 2 -o p2", 2, "--voxel"},
       {"batch capmap " + fvx_arm() + kArmOptions + " --shards 2 -o plan", 1, "holds a plan of other tasks"},
+      {"batch capmap missing.urdf --base a --tip b --shards 2 -o p2", 1, "missing.urdf"},
       {"batch status nowhere", 1, "no batch plan here"},
       {"batch status plan --joblog notalog", 1, "not a GNU parallel job log"},
       {"batch frobnicate", 2, "capmap, replay, status or merge"},
