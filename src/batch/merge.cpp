@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "fvx/batch/plan.hpp"
+#include "fvx/batch/sweep.hpp"
 #include "fvx/capmap/capability_map.hpp"
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
@@ -78,6 +79,7 @@ std::string merged_tables(const Plan& plan) {
 }  // namespace
 
 void merge_plan(const Plan& plan) {
+  if (plan.job == "sweep") return merge_sweep(plan);
   if (plan.job == "replay") {
     const std::string table = merged_tables(plan);
     write_file_atomically(plan.result, [&](std::ostream& out) { out << table; });

@@ -8,6 +8,14 @@ Json batch_plan_json(const batch::Plan& plan) {
   return {{"folder", plan.folder}, {"tasks", plan.tasks.size()}, {"result", plan.result}, {"merge", plan.merge_command}};
 }
 
+Json sweep_json(const batch::Sweep& sweep) {
+  Json planners = Json::array();
+  for (const batch::Planner& p : sweep.planners)
+    planners.push_back({{"label", p.label}, {"strategy", p.strategy}, {"flags", p.flags}});
+  return {{"scenes", sweep.scenes}, {"planners", planners}, {"seeds", sweep.seeds}, {"max_views", sweep.max_views},
+          {"explore_options", sweep.options}};
+}
+
 Json batch_status_json(const batch::Status& s) {
   return {{"done", s.done.size()},           {"failed", s.failed.size()},
           {"remaining", s.remaining.size()}, {"failed_tasks", s.failed},

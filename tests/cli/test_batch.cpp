@@ -1,7 +1,8 @@
 // fvx batch as users run it: a capability map planned as 4 shards and run by GNU parallel
 // (-j2, local) merges into the bytes of one process; a batch killed midway and run again
 // with --resume does too; status reads the job log; a missing shard stops the merge before
-// it writes anything; bad plans are refused on one line.
+// it writes anything; bad plans are refused on one line. A planner sweep run by GNU parallel
+// merges into the bytes of the same sweep run one task after another.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -161,6 +162,39 @@ TEST(CliBatch, ReplaysOfAListMergeIntoTheSameTableInParallelOrOneByOne) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a/tables.csv"));
 }
 
+// The sweep: 3 scenes x 2 planners through GNU parallel (-j2, one thread per run)
+// and the same sweep one run after another (two threads per run, so the thread count is
+// varied too): the merged tables and plot are the same bytes.
+TEST(CliBatch, APlannerSweepRunByGnuParallelMergesAsOneRunAfterAnother) {
+  ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0) << "GNU parallel is missing (scripts/install-deps.sh)";
+  const TempDir dir;
+  const std::string arm = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm";
+  for (const std::string plan : {"a", "b"}) {
+    const RunResult r = run_fvx(dir, "batch sweep --scenes closed-box,crates,1 --planners frontier-void,random --seeds 1 "
+                                     "--max-views 2 -o " + plan + " -- --capmap '" + arm + ".fcm' --arm '" + arm +
+                                     ".urdf' --resolution 0.05 --threads " + (plan == "a" ? "1" : "2"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out)["results"]["tasks"], 6);
+  }
+  ASSERT_EQ(sh(dir, "parallel -j2 --joblog a/joblog < a/tasks.txt > /dev/null 2>&1"), 0);
+  ASSERT_EQ(sh(dir, "while IFS= read -r task; do sh -c \"$task\" || exit 1; done < b/tasks.txt"), 0);
+  EXPECT_EQ(status_of(dir, "a")["done"], 6);
+  ASSERT_EQ(sh(dir, "sh a/merge.sh > /dev/null && sh b/merge.sh > /dev/null"), 0);
+  for (const char* file : {"summary.md", "summary.csv", "runs.csv", "coverage.csv", "coverage.png"})
+    EXPECT_TRUE(slurp(dir / ("a/" + std::string(file))) == slurp(dir / ("b/" + std::string(file)))) << file << " differs between parallel and one by one";
+  const std::string runs = slurp(dir / "a/runs.csv");
+  EXPECT_EQ(line_count(runs), 7u) << runs;
+  EXPECT_NE(runs.find("\nsuite-1,random,1,"), std::string::npos) << runs;
+  EXPECT_EQ(line_count(slurp(dir / "a/summary.csv")), 3u);
+  EXPECT_EQ(status_of(dir, "a")["merged"], true);
+
+  std::filesystem::remove(dir / "a/summary.md");  // a run missing: named, nothing written
+  std::filesystem::remove(dir / "a/parts/crates_random_1.json");
+  EXPECT_EQ(sh(dir, "sh a/merge.sh > /dev/null 2> merge.err"), 1);
+  EXPECT_NE(slurp(dir / "merge.err").find("crates_random_1"), std::string::npos) << slurp(dir / "merge.err");
+  EXPECT_FALSE(std::filesystem::exists(dir / "a/summary.md"));
+}
+
 TEST(CliBatch, StatusNamesFailedTasksAndBadPlansAreRefused) {
   const TempDir dir;
   ASSERT_EQ(run_fvx(dir, "batch capmap " + fvx_arm() + kArmOptions + " --shards 3 -o plan").status, 0);
@@ -185,7 +219,14 @@ TEST(CliBatch, StatusNamesFailedTasksAndBadPlansAreRefused) {
       {"batch capmap missing.urdf --base a --tip b --shards 2 -o p2", 1, "missing.urdf"},
       {"batch status nowhere", 1, "no batch plan here"},
       {"batch status plan --joblog notalog", 1, "not a GNU parallel job log"},
-      {"batch frobnicate", 2, "capmap, replay, status or merge"},
+      {"batch frobnicate", 2, "capmap, replay, sweep, status or merge"},
+      {"batch sweep -o p2", 2, "--scenes"},
+      {"batch sweep --scenes nowhere.ply -o p2", 1, "nowhere.ply"},
+      {"batch sweep --scenes builtin:nowhere -o p2", 2, "nowhere"},
+      {"batch sweep --scenes 1 --planners frontier-void,bogus -o p2", 2, "bogus"},
+      {"batch sweep --scenes 1 --seeds 3-1 -o p2", 2, "--seeds"},
+      {"batch sweep --scenes 1 --max-views 0 -o p2", 2, "--max-views"},
+      {"batch sweep --scenes 1 -o p2 -- --arm missing.urdf", 1, "missing.urdf"},
       {"batch replay --list nolist.txt -o p2", 1, "nolist.txt"},
       {"batch replay -o p2 -- --no-capmap", 2, "--list"},
   };

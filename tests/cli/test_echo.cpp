@@ -127,7 +127,11 @@ TEST(Echo, EveryCommandsReportHoldsEveryOptionsEffectiveValue) {
   args = "'" + source("data/arms/fvx-arm.urdf") + "' --base base_link --tip kinect_optical --voxel 0.2 --directions 20 "
          "--shards 2 --map m.fcm -o plan";
   expect_echoes(run("batch capmap", args), "batch", args, [](const cli::OptionSpec& o) {
-    return std::string(o.name) != "joblog" && std::string(o.name) != "list";
+    return std::string(o.name) != "joblog" && std::string(o.name) != "list" && std::string(o.help).rfind("sweep", 0) != 0;
+  });
+  args = "--scenes 2,closed-box --planners random --seeds 1-2 --max-views 3 -o splan -- --no-capmap";
+  expect_echoes(run("batch sweep", args), "batch", args, [](const cli::OptionSpec& o) {
+    return std::string(o.help).rfind("sweep", 0) == 0 || std::string(o.name) == "output";
   });
   std::ofstream(dir / "sequences.txt") << "session/\n";
   args = "--list sequences.txt --map t.csv -o rplan -- --no-capmap";

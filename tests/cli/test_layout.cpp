@@ -66,8 +66,9 @@ TEST(Layout, TheCommandLineIsThin) {
   for (const auto& entry : fs::directory_iterator(source_dir() / "src" / "cli"))
     if (is_source(entry.path())) total += lines_of(entry.path()).size();
   EXPECT_GT(total, 500u) << "src/cli was not found";
-  // 1800 for eight commands; batch (a ninth, plans and their status) brought 1 877.
-  EXPECT_LT(total, 1900u) << "src/cli holds library work again";
+  // 1800 for eight commands; batch (a ninth, plans and their status) brought 1 877, its
+  // sweep action (the options of a planner sweep; plan and merge in src/batch) 1 907.
+  EXPECT_LT(total, 1925u) << "src/cli holds library work again";
 }
 
 TEST(Layout, NoFunctionIsLongerThanAScreen) {

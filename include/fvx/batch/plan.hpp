@@ -28,7 +28,7 @@ struct Task {
 };
 
 struct Plan {
-  std::string job;            ///< "capmap" or "replay"
+  std::string job;            ///< "capmap", "replay" or "sweep"
   std::string folder;         ///< absolute
   std::vector<Task> tasks;
   std::string merge_command;  ///< sh; joins the task outputs into `result`
@@ -66,7 +66,7 @@ Plan replay_plan(const std::string& fvx, const std::string& list, const std::vec
 /// `sequence`, is the task's number (1-based) and without the columns of seconds
 /// (`*_s`: they differ from machine to machine and run to run), so that the same plan run
 /// anywhere merges into the same bytes. FileError naming a missing or damaged part, or parts
-/// whose tables have other columns; nothing is written then.
+/// whose tables have other columns; nothing is written then. For sweep, merge_sweep (sweep.hpp).
 void merge_plan(const Plan& plan);
 
 /// Creates the folder (and parts/, slurm/) and writes tasks.txt, merge.sh, slurm.sbatch and
