@@ -26,7 +26,10 @@
 #    search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx adds another binary in the
 #    same run; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
-#    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA).
+#    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA);
+#  - batch: the youBot map at 2.5 cm as 2, 8 and 64 shards (slabs and samples) through GNU
+#    parallel on this machine's cores against one process, and the projected time on 64
+#    slots (scripts/bench-batch.sh; FVX_REAL_DATA).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -95,6 +98,8 @@ fi
 youbot="$data/arms/youbot_arm.urdf"
 if [ -f "$youbot" ]; then
   echo "== capability maps" && "$build/tests/bench/bench_capmap" "$youbot"
+  echo "== batch: capability-map shards through GNU parallel against one process" &&
+    FVX_REAL_DATA="$data" scripts/bench-batch.sh "$youbot" base_link arm_link_5
 else
   echo "== capability maps: skipped ($youbot not found; set FVX_REAL_DATA)"
 fi

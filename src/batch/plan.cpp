@@ -51,8 +51,9 @@ Plan capmap_plan(const std::string& fvx, const std::string& urdf,
   std::string merge = shell_quote(absolute(fvx)) + " capmap merge";
   for (int i = 1; i <= shards; ++i) {
     const std::string output = plan.folder + "/parts/" + shard_name(i, shards);
+    const std::string report = output.substr(0, output.size() - 4) + ".json";  // the shard's report, beside it
     plan.tasks.push_back({build + " --shard " + std::to_string(i) + "/" + std::to_string(shards) + " -o " +
-                              shell_quote(output),
+                              shell_quote(output) + " > " + shell_quote(report),
                           output});
     merge += " " + shell_quote(output);
   }

@@ -7,6 +7,7 @@
 #include <random>
 #include <thread>
 
+#include "fvx/capmap/sample_shards.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/parse.hpp"
 #include "fvx/core/pose.hpp"
@@ -37,6 +38,14 @@ MapLayout parse_map_layout(const std::string& name, const std::string& what) {
   throw UsageError(what + " '" + name + "': expected grid or turn");
 }
 
+const char* to_string(ShardSplit split) { return split == ShardSplit::Samples ? "samples" : "slab"; }
+
+ShardSplit parse_shard_split(const std::string& name, const std::string& what) {
+  if (name == "slab") return ShardSplit::Slab;
+  if (name == "samples") return ShardSplit::Samples;
+  throw UsageError(what + " '" + name + "': expected slab or samples");
+}
+
 void parse_shard(const std::string& text, const std::string& what, BuildConfig& config) {
   const auto slash = text.find('/');
   if (slash == std::string::npos) throw UsageError(what + ": expected I/N, e.g. 3/8");
@@ -56,6 +65,8 @@ std::vector<std::string> BuildConfig::validate() const {
   if (turns_per_fk < 1 || turns_per_fk > 4096) problems.push_back("turns_per_fk must be 1 to 4096");
   if (shard_count < 1 || shard_index >= shard_count) problems.push_back("shard_index must be below shard_count");
   if (layout == MapLayout::Turn && method != BuildMethod::FkWitness) problems.push_back("the turn layout needs the fk-witness method");
+  if (shard_split == ShardSplit::Samples && (method != BuildMethod::FkWitness || layout != MapLayout::Grid || !fk_samples))
+    problems.push_back("samples shards need the fk-witness method, the grid layout and a budget (fk_samples, --fk-samples)");
   return problems;
 }
 
@@ -107,6 +118,8 @@ CapabilityHeader header_for(const Arm& arm, const BuildConfig& config, const Dir
   h.seed = config.seed;
   h.shard_index = config.shard_index;
   h.shard_count = config.shard_count;
+  if (config.shard_split == ShardSplit::Samples)
+    h.shard_split = "samples", h.target_recall = config.target_recall, h.fk_samples = config.fk_samples;
   h.fvx_version = version();
   if (config.layout == MapLayout::Turn) h.layout = "turn", h.turn = TurnFrame::of(arm, v, config.directions);
   return h;
@@ -185,7 +198,10 @@ void draw_witnesses(const Arm& arm, const BuildConfig& config, const CapabilityM
 }
 
 /// The fk-witness build: rounds of FK samples set the bits they land in, on all cores, until
-/// a round's share of samples on bits set before it reaches the target recall.
+/// a round's share of samples on bits set before it reaches the target recall. A samples
+/// shard draws only its chunks (g ≡ I−1 mod N, g counted over the whole budget), keeps every
+/// round's record for the merge and does not stop before the budget: it cannot see the
+/// other shards' bits.
 void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& map, BuildStats& s,
                      const std::function<void(std::size_t, std::size_t)>& progress, const std::atomic<bool>* cancel) {
   const CapabilityHeader& h = map.header();
@@ -195,13 +211,17 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
   const std::size_t limit = config.fk_samples ? config.fk_samples : std::size_t(1) << 27;
   constexpr std::size_t kChunk = 4096;  // a generator per chunk: thread-count independent
   const unsigned threads = core::worker_count(config.threads);
-  for (std::size_t round = 0; s.fk_samples < limit && !(cancel && cancel->load()); ++round) {
-    const std::size_t n = std::min(kWitnessRound, limit - s.fk_samples), chunks = (n + kChunk - 1) / kChunk;
-    std::vector<std::int64_t> landed(n);
+  const bool by_samples = config.shard_split == ShardSplit::Samples;
+  std::vector<SampleRound> rounds;
+  std::size_t drawn = 0, first_chunk = 0;  // over all shards; the round's first chunk's number
+  for (std::size_t round = 0; drawn < limit && !(cancel && cancel->load()); ++round) {
+    const std::size_t n = std::min(kWitnessRound, limit - drawn), chunks = (n + kChunk - 1) / kChunk;
+    std::vector<std::int64_t> landed(n, kNotDrawn);
     std::atomic<std::size_t> next{0}, fk_evaluations{0};
     auto work = [&] {
       std::size_t evaluations = 0;
       for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
+        if (by_samples && (first_chunk + c) % config.shard_count != config.shard_index) continue;
         std::mt19937_64 rng(seed_mix(seed_mix(config.seed, 3 + round), c));
         draw_witnesses(arm, config, map, rng, c * kChunk, std::min(n, (c + 1) * kChunk), landed.data(), evaluations);
       }
@@ -211,15 +231,24 @@ void build_witnesses(const Arm& arm, const BuildConfig& config, CapabilityMap& m
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
     work();
     for (auto& t : pool) t.join();
-    std::size_t known = 0;  // samples on bits set by earlier rounds
-    for (const std::int64_t b : landed) known += b >= 0 && (set[std::size_t(b) / 64] >> (b % 64) & 1u);
+    const SampleRound r = sample_round(landed, set);
     for (const std::int64_t b : landed)
       if (b >= 0) set[std::size_t(b) / 64] |= std::uint64_t(1) << (b % 64);
-    s.fk_samples += n;
+    drawn += n, first_chunk += chunks;
+    s.fk_samples += r.samples;
     s.fk_evaluations += fk_evaluations.load();
-    if (round > 0) s.estimated_recall = double(known) / double(n);
-    if (progress) progress(s.fk_samples, limit);
+    if (progress) progress(drawn, limit);
+    if (by_samples) {
+      rounds.push_back(r);
+      continue;
+    }
+    if (round > 0) s.estimated_recall = double(r.known) / double(n);
     if (round > 0 && s.estimated_recall >= config.target_recall) break;
+  }
+  if (by_samples) {  // the rounds, not bits: the merge decides which bits the build keeps
+    for (const std::uint64_t w : set) s.reached += std::size_t(__builtin_popcountll(w));
+    map.set_sample_rounds(std::move(rounds));
+    return;
   }
   const auto [first, end] = shard_voxels(h, config);
   for (std::int64_t b = first * directions; b < end * directions; ++b)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fvx/capmap/sample_shards.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/core/pose.hpp"
 
@@ -176,6 +177,35 @@ bool same_turn(const TurnFrame& a, const TurnFrame& b) {
 
 }  // namespace
 
+/// Samples shards (checked alike by merge): the bits the stop rule keeps of their union, in a
+/// map whose header is the single build's.
+CapabilityMap CapabilityMap::merge_sample_shards(const std::vector<CapabilityMap>& shards) {
+  CapabilityHeader joined = shards.front().header_;
+  joined.shard_index = 0, joined.shard_count = 1;
+  joined.shard_split = "slab", joined.target_recall = 0, joined.fk_samples = 0;
+  CapabilityMap out(joined);
+  std::vector<const std::vector<SampleRound>*> rounds;
+  for (const CapabilityMap& shard : shards) rounds.push_back(&shard.sample_rounds_);
+  const std::int64_t directions = joined.directions;
+  const std::size_t bits = std::size_t(joined.dims[0]) * joined.dims[1] * joined.dims[2] * std::size_t(directions);
+  const CapabilityHeader& h = shards.front().header_;
+  const std::vector<std::uint64_t> set = replay_sample_rounds(rounds, bits, h.target_recall, h.fk_samples);
+  std::vector<std::uint64_t> words(std::size_t((directions + 63) / 64));  // one voxel's, set at once
+  std::int64_t voxel = -1;
+  for (std::size_t w = 0; w <= set.size(); ++w)
+    for (std::uint64_t word = w < set.size() ? set[w] : 0; word || w == set.size(); word &= word - 1) {
+      const std::int64_t b = w < set.size() ? std::int64_t(w * 64 + std::size_t(__builtin_ctzll(word))) : -1;
+      if (voxel >= 0 && (b < 0 || b / directions != voxel)) {
+        out.set_words(voxel, words.data());
+        std::fill(words.begin(), words.end(), 0);
+      }
+      if (b < 0) break;
+      voxel = b / directions;
+      words[std::size_t(b % directions / 64)] |= std::uint64_t(1) << (b % directions % 64);
+    }
+  return out;
+}
+
 CapabilityMap CapabilityMap::merge(const std::vector<CapabilityMap>& shards) {
   if (shards.empty()) throw Error("no shards to merge");
   const CapabilityHeader& first = shards.front().header_;
@@ -192,11 +222,13 @@ CapabilityMap CapabilityMap::merge(const std::vector<CapabilityMap>& shards) {
         first.dims != b.dims || first.directions != b.directions || first.seed != b.seed ||
         first.method != b.method || first.shard_count != b.shard_count ||
         first.position_tolerance_m != b.position_tolerance_m || first.angle_tolerance_rad != b.angle_tolerance_rad ||
-        first.layout != b.layout || !same_turn(first.turn, b.turn))
+        first.layout != b.layout || !same_turn(first.turn, b.turn) || first.shard_split != b.shard_split ||
+        first.target_recall != b.target_recall || first.fk_samples != b.fk_samples)
       throw Error("the shards were not made from the same arm and settings; they cannot be merged");
     if (seen[b.shard_index]) throw Error("shard " + std::to_string(b.shard_index + 1) + " is given twice");
     seen[b.shard_index] = true;
     witnesses.insert(witnesses.end(), shard.turn_witnesses_.begin(), shard.turn_witnesses_.end());
+    if (first.shard_split == "samples") continue;  // their rounds decide the bits
     for (const auto& [voxel, words] : shard.voxels_) {
       auto& mine = out.voxels_[voxel];
       if (mine.empty()) mine.assign(words.size(), 0);
@@ -206,6 +238,7 @@ CapabilityMap CapabilityMap::merge(const std::vector<CapabilityMap>& shards) {
   for (std::uint32_t i = 0; i < first.shard_count; ++i)
     if (!seen[i]) throw Error("shard " + std::to_string(i + 1) + " of " + std::to_string(first.shard_count) + " is missing");
   if (joined.layout == "turn") out.set_turn_witnesses(std::move(witnesses));
+  if (joined.shard_split == "samples") return merge_sample_shards(shards);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "fvx/capmap/build.hpp"  // kWitnessRound
 #include "fvx/capmap/capability_map.hpp"
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
@@ -19,7 +20,9 @@ constexpr char kMagic[8] = {'F', 'V', 'X', 'C', 'M', 'A', 'P', '\n'};
 /// offset basis; version 1 files (IK at the voxel centre) are still read. Version 3 is the
 /// turn layout (witnesses instead of bits): an fvx that reads only 1 and 2 refuses it by its
 /// version ("format version 3; this fvx reads versions 1 to 2"). Grid maps stay version 2.
-constexpr std::uint32_t kGridVersion = 2, kTurnVersion = 3;
+/// Version 4 is a samples shard (rounds of witnesses instead of bits): an older fvx must not
+/// merge it as a z-slab.
+constexpr std::uint32_t kGridVersion = 2, kTurnVersion = 3, kSamplesVersion = 4;
 /// Painting steps a file may ask for: one witness (65 536: 5 000 voxels from the axis), and all
 /// of them: 2^24, or 4 096 per witness on average (the youBot at 1.25 cm takes about 300), so
 /// that a small corrupt file cannot ask for minutes.
@@ -104,13 +107,26 @@ struct Reader {
 void CapabilityMap::save(const std::string& path) const {
   if (lowercase_extension(path) != ".fcm") throw FileError(path, "capability maps are written as .fcm");
   std::string out(kMagic, sizeof kMagic);
-  const bool turn = header_.layout == "turn";
-  put<std::uint32_t>(out, turn ? kTurnVersion : kGridVersion);
+  const bool turn = header_.layout == "turn", samples = header_.shard_split == "samples";
+  put<std::uint32_t>(out, turn ? kTurnVersion : samples ? kSamplesVersion : kGridVersion);
   nlohmann::ordered_json header = header_json(header_);
   if (turn) header["layout"] = "turn", header["turn"] = turn_json(header_.turn);
+  if (samples)
+    header["shard_split"] = "samples", header["target_recall"] = header_.target_recall,
+    header["fk_samples"] = header_.fk_samples;
   const std::string header_text = header.dump();
   put<std::uint32_t>(out, std::uint32_t(header_text.size()));
   out += header_text;
+  if (samples) {
+    put<std::uint64_t>(out, sample_rounds_.size());
+    for (const SampleRound& r : sample_rounds_) {
+      put<std::uint64_t>(out, r.samples), put<std::uint64_t>(out, r.known), put<std::uint64_t>(out, r.fresh.size());
+      for (const auto& [bit, count] : r.fresh) put<std::int64_t>(out, bit), put<std::uint32_t>(out, count);
+    }
+    put<std::uint64_t>(out, fnv1a(out, kFnvBasis));
+    write_file_atomically(path, [&](std::ostream& s) { s.write(out.data(), std::streamsize(out.size())); });
+    return;
+  }
   if (turn) {
     put<std::uint64_t>(out, turn_witnesses_.size());
     for (const TurnWitness& w : turn_witnesses_)
@@ -185,6 +201,35 @@ std::vector<TurnWitness> read_turn_witnesses(Reader& r, const CapabilityHeader& 
   return witnesses;
 }
 
+/// A samples shard's rounds: each within a round's size, its fresh bits in the grid, ascending,
+/// each counted at least once, no more configurations than the round's and the budget's.
+std::vector<SampleRound> read_sample_rounds(Reader& r, const CapabilityHeader& h, const std::string& path) {
+  const std::int64_t bits = std::int64_t(h.dims[0]) * h.dims[1] * h.dims[2] * h.directions;
+  const auto count = r.get<std::uint64_t>();
+  if (count > (r.bytes.size() - r.at) / 24) throw FileError(path, "truncated capability map");
+  std::vector<SampleRound> rounds(count);
+  std::uint64_t drawn = 0;
+  for (SampleRound& round : rounds) {
+    round.samples = r.get<std::uint64_t>(), round.known = r.get<std::uint64_t>();
+    const auto fresh = r.get<std::uint64_t>();
+    if (fresh > (r.bytes.size() - r.at) / 12) throw FileError(path, "truncated capability map");
+    std::uint64_t counted = round.known;
+    for (std::uint64_t i = 0; i < fresh; ++i) {
+      const auto bit = r.get<std::int64_t>();
+      const auto n = r.get<std::uint32_t>();
+      if (bit < 0 || bit >= bits || n < 1 || (!round.fresh.empty() && bit <= round.fresh.back().first))
+        throw FileError(path, "a round's bits are not ascending bits of the grid, each counted");
+      round.fresh.emplace_back(bit, n);
+      counted += n;
+    }
+    if (round.samples > kWitnessRound || counted > round.samples)
+      throw FileError(path, "a round counts more configurations than it holds (at most 2^18)");
+    drawn += round.samples;
+  }
+  if (drawn > h.fk_samples) throw FileError(path, "the rounds hold more configurations than the budget (fk_samples)");
+  return rounds;
+}
+
 /// The header's JSON, checked: every field, values in range, a method and layout this fvx
 /// reads in a file of the version that holds them.
 CapabilityHeader read_header(const std::string& text, std::uint32_t version, const std::string& path) {
@@ -211,6 +256,8 @@ CapabilityHeader read_header(const std::string& text, std::uint32_t version, con
     h.fvx_version = j.at("fvx_version");
     h.layout = j.value("layout", "grid");
     if (h.layout == "turn") h.turn = turn_from_json(j.at("turn"));
+    h.shard_split = j.value("shard_split", "slab");
+    if (h.shard_split == "samples") h.target_recall = j.at("target_recall"), h.fk_samples = j.at("fk_samples");
   } catch (const nlohmann::json::exception& e) {
     throw FileError(path, std::string("bad capability-map header: ") + e.what());
   }
@@ -224,6 +271,13 @@ CapabilityHeader read_header(const std::string& text, std::uint32_t version, con
     throw FileError(path, "layout '" + h.layout + "' in a version " + std::to_string(version) + " file; the turn layout "
                           "is version 3 and only it");
   if (h.layout == "turn" && h.method != "fk-witness") throw FileError(path, "a turn layout holds fk-witness maps only");
+  if (h.shard_split != "slab" && h.shard_split != "samples") throw FileError(path, "unknown shard_split '" + h.shard_split + "'");
+  if ((version == kSamplesVersion) != (h.shard_split == "samples"))
+    throw FileError(path, "a samples shard is format version 4 and only it");
+  if (h.shard_split == "samples" && (h.method != "fk-witness" || h.layout != "grid" || !(h.target_recall > 0) ||
+                                     !(h.target_recall <= 1) || h.fk_samples < 1 || h.fk_samples > (std::uint64_t(1) << 40)))
+    throw FileError(path, "bad capability-map header: a samples shard needs fk-witness, the grid layout, target_recall "
+                          "in (0, 1] and fk_samples from 1 to 2^40");
   return h;
 }
 
@@ -241,9 +295,9 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   const std::string body = bytes.substr(0, bytes.size() - 8);
   Reader r{body, sizeof kMagic, path};
   const auto version = r.get<std::uint32_t>();
-  if (version < 1 || version > kTurnVersion)
+  if (version < 1 || version > kSamplesVersion)
     throw FileError(path, "capability map format version " + std::to_string(version) + "; this fvx reads versions 1 to " +
-                              std::to_string(kTurnVersion));
+                              std::to_string(kSamplesVersion));
   if (fnv1a(body, version == 1 ? kFnvBasisVersion1 : kFnvBasis) != stored)
     throw FileError(path, "checksum mismatch: the capability map is corrupt or truncated");
   const auto header_size = r.get<std::uint32_t>();
@@ -261,6 +315,11 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
       throw FileError(path, e.what());
     }
     return map;
+  }
+  if (h.shard_split == "samples") {
+    map.set_sample_rounds(read_sample_rounds(r, h, path));
+    if (r.at != body.size()) throw FileError(path, "trailing bytes after the rounds");
+    return map;  // its bits are the merge's to decide
   }
   const auto count = r.get<std::uint64_t>();
   const std::size_t words = std::size_t((h.directions + 63) / 64);

@@ -61,8 +61,12 @@ batch::Plan plan_capmap(const Args& args, Json& report) {
       if (o.range) args.number(o.name, 0);
       options.emplace_back(o.name, args.get(o.name));
     }
-  if (args.has("method")) capmap::parse_build_method(args.get("method"), "--method");
-  if (args.has("layout")) capmap::parse_map_layout(args.get("layout"), "--layout");
+  capmap::BuildConfig c;  // the names and combinations every task would refuse
+  if (args.has("method")) c.method = capmap::parse_build_method(args.get("method"), "--method");
+  if (args.has("layout")) c.layout = capmap::parse_map_layout(args.get("layout"), "--layout");
+  if (args.has("shard-split")) c.shard_split = capmap::parse_shard_split(args.get("shard-split"), "--shard-split");
+  args.read("fk-samples", c.fk_samples);
+  throw_if_problems("fvx batch capmap", c.validate());
   Json given = Json::object();  // every option a task may take: as given, or null
   for (const OptionSpec& o : batch_spec().options)
     if (passed_on(o)) given[o.name] = args.has(o.name) ? Json(args.get(o.name)) : Json(nullptr);

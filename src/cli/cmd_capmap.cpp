@@ -57,6 +57,8 @@ const CommandSpec kCapmapSpec = {
         threads_option("/config/threads", "build: threads"),
         {"shard", 0, "I/N", "build: only z-slab I of N (1-based; turn layout: the height cells = I-1 mod N); merge the parts later",
          "/results/header/shard_index"},
+        {"shard-split", 0, "NAME", "build: how shards divide the build: slab (default: z-slabs) or samples (fk-witness grid: "
+         "shard I draws its share of --fk-samples; the merge applies --target-recall)", "/config/shard_split"},
         {"point", 0, "x,y,z", "query: a position in the base frame, metres", "/results/point_m"},
         {"direction", 0, "x,y,z", "query: a viewing direction (need not be unit)", "/results/direction"},
         {"samples", 0, "N", "eval: queries for precision and for recall each", "/config/samples", dflt(kEvalSamples),
@@ -112,6 +114,7 @@ int build(const Args& args, Json& report) {
   if (args.has("exhaustive") && args.has("method")) throw UsageError("fvx capmap build: give --exhaustive or --method");
   if (args.has("exhaustive")) c.method = capmap::BuildMethod::ExhaustiveIk;
   if (args.has("shard")) capmap::parse_shard(args.get("shard"), "--shard", c);
+  if (args.has("shard-split")) c.shard_split = capmap::parse_shard_split(args.get("shard-split"), "--shard-split");
   c.use_first_joint_turn = !args.has("fk-per-witness");
   if (args.has("layout")) c.layout = capmap::parse_map_layout(args.get("layout"), "--layout");
   throw_if_problems("fvx capmap build", c.validate());

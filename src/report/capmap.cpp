@@ -27,6 +27,8 @@ Json capmap_header_json(const capmap::CapabilityHeader& h) {
           {"angle_tolerance_deg", h.angle_tolerance_rad * 180.0 / M_PI},      {"method", h.method},
           {"seed", h.seed},             {"shard_index", h.shard_index},     {"shard_count", h.shard_count},
           {"fvx_version", h.fvx_version}, {"layout", h.layout}};
+  if (h.shard_split == "samples")
+    j["shard_split"] = h.shard_split, j["target_recall"] = h.target_recall, j["fk_samples"] = h.fk_samples;
   if (h.layout == "turn")
     j["turn"] = {{"point_m", vec_json(h.turn.point_base)}, {"axis", vec_json(h.turn.axis_base)},
                  {"x_axis", vec_json(h.turn.x_base)},
@@ -107,7 +109,7 @@ Json capmap_build_config_json(const capmap::BuildConfig& c) {
   return {{"seed", c.seed}, {"method", capmap::to_string(c.method)}, {"fk_samples", c.fk_samples},
           {"target_recall", c.target_recall}, {"ik_restarts", c.ik_restarts}, {"threads", c.threads},
           {"turns_per_fk", c.turns_per_fk}, {"use_first_joint_turn", c.use_first_joint_turn},
-          {"layout", capmap::to_string(c.layout)}};
+          {"layout", capmap::to_string(c.layout)}, {"shard_split", capmap::to_string(c.shard_split)}};
 }
 
 Json capmap_build_json(const capmap::CapabilityMap& map, const capmap::BuildStats& stats, double seconds) {

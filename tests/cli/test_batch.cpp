@@ -70,6 +70,26 @@ TEST(CliBatch, CapmapShardsRunByGnuParallelMergeIntoTheSingleBuild) {
   EXPECT_FALSE(std::filesystem::exists(dir / "plan/map.fcm"));
 }
 
+// Samples shards (each draws its share of a budget; the merge applies the stop rule): through
+// GNU parallel they merge into the one-process build with the same budget, and each task
+// leaves its report beside its shard.
+TEST(CliBatch, SamplesShardsRunByGnuParallelMergeIntoTheOneProcessBuild) {
+  ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0) << "GNU parallel is missing (scripts/install-deps.sh)";
+  const TempDir dir;
+  const std::string budget = " --fk-samples 800000";  // three rounds and a part of one
+  ASSERT_EQ(run_fvx(dir, "capmap build " + fvx_arm() + kArmOptions + budget + " -o one.fcm").status, 0);
+  const RunResult r = run_fvx(dir, "batch capmap " + fvx_arm() + kArmOptions + budget + " --shard-split samples --threads 1 "
+                                   "--shards 4 -o plan");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["config"]["build_options"]["shard-split"], "samples");
+  ASSERT_EQ(sh(dir, "parallel -j2 --joblog plan/joblog < plan/tasks.txt > out.txt 2>&1 && sh plan/merge.sh > /dev/null"), 0);
+  EXPECT_EQ(slurp(dir / "out.txt"), "") << "the tasks' reports belong beside their shards";
+  EXPECT_TRUE(slurp(dir / "plan/map.fcm") == slurp(dir / "one.fcm")) << "the merged samples shards differ from one build";
+  const json shard = json::parse(slurp(dir / "plan/parts/shard-2-of-4.json"));
+  EXPECT_EQ(shard["results"]["header"]["shard_index"], 1);
+  EXPECT_LT(shard["results"]["fk_samples"].get<double>(), 800000.0 / 2) << "a shard draws its share only";
+}
+
 TEST(CliBatch, ABatchKilledMidwayResumesToTheSameBytes) {
   ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0) << "GNU parallel is missing (scripts/install-deps.sh)";
   const TempDir dir;
@@ -217,6 +237,8 @@ TEST(CliBatch, StatusNamesFailedTasksAndBadPlansAreRefused) {
       {"batch capmap " + fvx_arm() + kArmOptions + " --voxel -1 --shards 2 -o p2", 2, "--voxel"},
       {"batch capmap " + fvx_arm() + kArmOptions + " --shards 2 -o plan", 1, "holds a plan of other tasks"},
       {"batch capmap missing.urdf --base a --tip b --shards 2 -o p2", 1, "missing.urdf"},
+      {"batch capmap " + fvx_arm() + kArmOptions + " --shard-split samples --shards 2 -o p2", 2, "--fk-samples"},
+      {"batch capmap " + fvx_arm() + kArmOptions + " --shard-split rows --shards 2 -o p2", 2, "--shard-split"},
       {"batch status nowhere", 1, "no batch plan here"},
       {"batch status plan --joblog notalog", 1, "not a GNU parallel job log"},
       {"batch frobnicate", 2, "capmap, replay, sweep, status or merge"},

@@ -42,7 +42,8 @@ std::string fvx_binary();
 std::string shell_quote(const std::string& word);
 
 /// The capability map of `urdf` in `shards` z-slabs: task i runs
-/// `FVX capmap build URDF OPTIONS --shard i/N -o FOLDER/parts/shard-i-of-N.fcm`, the merge
+/// `FVX capmap build URDF OPTIONS --shard i/N -o FOLDER/parts/shard-i-of-N.fcm` (its JSON
+/// report into shard-i-of-N.json beside it), the merge
 /// `FVX capmap merge` of all of them into `result` (FOLDER/map.fcm when empty). `options` are
 /// capmap build's (name without dashes, value; empty for a flag), passed on as given. Paths are
 /// made absolute. UsageError for shards outside 1 to 100 000.

@@ -64,6 +64,15 @@ const char* to_string(MapLayout layout);
 /// "grid" or "turn"; UsageError naming `what` otherwise.
 MapLayout parse_map_layout(const std::string& name, const std::string& what);
 
+/// How shards divide a build: Slab (each shard keeps its z-slab's bits; an fk-witness shard
+/// still draws every witness, since its stop rule needs all of them) or Samples (fk-witness,
+/// grid layout, a budget `fk_samples`: shard I of N draws the chunks g ≡ I−1 mod N of the
+/// budget, and the merge applies the stop rule; CapabilityMap::merge).
+enum class ShardSplit { Slab, Samples };
+const char* to_string(ShardSplit split);
+/// "slab" or "samples"; UsageError naming `what` otherwise.
+ShardSplit parse_shard_split(const std::string& name, const std::string& what);
+
 /// Configurations per round of the fk-witness build.
 constexpr std::size_t kWitnessRound = std::size_t(1) << 18;
 
@@ -94,7 +103,8 @@ struct BuildConfig {
   /// milliseconds and recall 0.3–0.7 % more than Turn; Turn pays off at fine voxels (README).
   MapLayout layout = MapLayout::Grid;
   unsigned threads = 0;               ///< 0: all cores
-  std::uint32_t shard_index = 0, shard_count = 1;  ///< build only this z-slab of the grid
+  std::uint32_t shard_index = 0, shard_count = 1;  ///< build only this shard
+  ShardSplit shard_split = ShardSplit::Slab;
 
   std::vector<std::string> validate() const;
 };

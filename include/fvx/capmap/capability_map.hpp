@@ -59,12 +59,30 @@ struct CapabilityHeader {
   std::string method;                               ///< how bits were decided, e.g. "fk-seeded-ik"
   std::uint64_t seed = 1;
   std::uint32_t shard_index = 0, shard_count = 1;   ///< which voxels this file holds (z-slabs)
+  /// "slab": a shard holds its z-slab's bits (a turn shard its height cells); "samples":
+  /// fk-witness grid only, a shard holds its share of the witnesses' rounds (SampleRound,
+  /// format version 4), and the merge applies the stop rule — `target_recall` within the
+  /// budget of `fk_samples` configurations — to their union. Both are in the header of
+  /// samples shards only.
+  std::string shard_split = "slab";
+  double target_recall = 0;
+  std::uint64_t fk_samples = 0;
   std::string fvx_version;
   /// "grid": bits per voxel (format version 2); "turn": one witness per reduced cell of the
   /// first joint's turn (turn_layout.hpp, format version 3), expanded into the bits on load.
   /// A turn layout's shard holds the witnesses whose height cell is ≡ shard_index mod count.
   std::string layout = "grid";
   TurnFrame turn;  ///< the turn layout's frame and cells
+};
+
+/// What a samples shard (CapabilityHeader::shard_split) drew in one round of the fk-witness
+/// build: its configurations, how many landed on bits its earlier rounds had set, and the
+/// others that landed in the grid, as (bit = voxel · N + direction, configurations) in bit
+/// order. Enough to tell, with the other shards, how many of the round landed on bits set
+/// before it by any shard: the build's estimate of the recall.
+struct SampleRound {
+  std::uint64_t samples = 0, known = 0;
+  std::vector<std::pair<std::int64_t, std::uint32_t>> fresh;
 };
 
 /// The arm settings a map was built with (links, mount, viewing axis), to load its URDF again.
@@ -89,6 +107,10 @@ class CapabilityMap {
   /// expands them into the bits (expand_turn_witnesses, at most `max_steps` steps).
   void set_turn_witnesses(std::vector<TurnWitness> witnesses, double max_steps = INFINITY);
   const std::vector<TurnWitness>& turn_witnesses() const { return turn_witnesses_; }
+  /// Samples shard: its rounds. It holds no bits: the merge decides which of the bits the
+  /// rounds landed on the build keeps.
+  void set_sample_rounds(std::vector<SampleRound> rounds) { sample_rounds_ = std::move(rounds); }
+  const std::vector<SampleRound>& sample_rounds() const { return sample_rounds_; }
   bool reachable(std::int64_t voxel, int direction) const;
   /// Is `p_base` reachable looking along `d_base` (unit)? Nearest voxel, nearest direction.
   bool reachable(const Eigen::Vector3d& p_base, const Eigen::Vector3d& d_base) const;
@@ -113,7 +135,10 @@ class CapabilityMap {
   const std::map<std::int64_t, std::vector<std::uint64_t>>& voxels() const { return voxels_; }
 
   /// Joins shards 0 … n−1 of one build (same arm and settings) into the map a single run
-  /// makes: its header says shard 0 of 1. Throws Error for missing, repeated or foreign shards.
+  /// makes: its header says shard 0 of 1. Samples shards: the rounds of all shards in order,
+  /// each round's estimate from the bits set before it, until the estimate reaches the
+  /// target (round > 0) or the budget ends, as the single build stops. Throws Error for
+  /// missing, repeated or foreign shards.
   static CapabilityMap merge(const std::vector<CapabilityMap>& shards);
 
   /// Writes `.fcm`, atomically. Format in man/fvx-capmap.5.
@@ -123,10 +148,13 @@ class CapabilityMap {
   static CapabilityMap load(const std::string& path);
 
  private:
+  static CapabilityMap merge_sample_shards(const std::vector<CapabilityMap>& shards);
+
   CapabilityHeader header_;
   DirectionSet directions_;
   std::map<std::int64_t, std::vector<std::uint64_t>> voxels_;
   std::vector<TurnWitness> turn_witnesses_;
+  std::vector<SampleRound> sample_rounds_;
 };
 
 }  // namespace fvx::capmap

@@ -31,7 +31,7 @@ TEST(BatchPlan, ShardsAreNamedInTaskOrderAndMergedInIt) {
   EXPECT_EQ(plan.tasks[0].output, "/tmp/p/parts/shard-01-of-12.fcm");
   EXPECT_EQ(plan.tasks[11].output, "/tmp/p/parts/shard-12-of-12.fcm");
   EXPECT_EQ(plan.tasks[2].command, "'/usr/bin/fvx' capmap build '/arms/a b.urdf' --voxel '0.05' --exhaustive --shard 3/12 "
-                                   "-o '/tmp/p/parts/shard-03-of-12.fcm'");
+                                   "-o '/tmp/p/parts/shard-03-of-12.fcm' > '/tmp/p/parts/shard-03-of-12.json'");
   EXPECT_EQ(plan.result, "/tmp/p/map.fcm");
   std::size_t at = 0;  // the merge names the shards in task order
   for (const Task& t : plan.tasks) {

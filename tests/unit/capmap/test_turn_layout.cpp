@@ -116,8 +116,10 @@ TEST(TurnLayout, CorruptFilesAreRefusedWithTheirProblem) {
     return b;
   };
   std::string newer = body;
-  newer[8] = 4;
-  expect_refused(dir, newer, "format version 4; this fvx reads versions 1 to 3");
+  newer[8] = 5;
+  expect_refused(dir, newer, "format version 5; this fvx reads versions 1 to 4");
+  newer[8] = 4;  // a samples shard's version
+  expect_refused(dir, newer, "layout 'turn' in a version 4 file");
   std::string as_grid = body;
   as_grid[8] = 2;
   expect_refused(dir, as_grid, "layout 'turn' in a version 2 file");

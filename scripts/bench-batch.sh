@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Batch work (issue 22): a capability map built as N shards by GNU parallel on this machine's
+# cores against one process on all of them, in the same run. The one-process build is the
+# default (fk-witness: rounds of witnesses until the recall estimate reaches 0.995). Shards:
+#  - slab (the default split): each shard keeps one z-slab, and draws every witness;
+#  - samples with the budget one process drew (its report's fk_samples), and with twice it:
+#    each shard draws its share of the budget, the merge applies the stop rule.
+# Per plan: the batch's wall time (plan, `parallel -j CORES` of one-thread tasks, merge), its
+# ratio to one process, whether the merged map is the one-process map byte for byte, the
+# shards' run times from the job log and, for 64 shards, the time 64 slots would take (the
+# longest shard plus the merge, as measured here). Then fk-seeded-ik, whose slab shards split
+# the IK work, at FVX_BATCH_IK_VOXEL (default 0.05; 0 skips it).
+#   scripts/bench-batch.sh [URDF BASE TIP]   default: FVX_REAL_DATA's youBot arm
+# FVX_BATCH_VOXEL (default 0.025), FVX_BATCH_SHARDS (default "2 8 64"), FVX_BATCH_SLAB_SHARDS
+# (default: the same; slab shards draw every witness each, so 64 of them take 64 builds).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${FVX_BUILD_DIR:-build}"
+data="${FVX_REAL_DATA:-../shared/data}"
+urdf="${1:-$data/arms/youbot_arm.urdf}" base="${2:-base_link}" tip="${3:-arm_link_5}"
+fvx="$(pwd)/$build/src/fvx"
+[ -x "$fvx" ] || { scripts/install-deps.sh && scripts/build.sh >/dev/null; }
+command -v parallel >/dev/null && command -v jq >/dev/null && [ -x /usr/bin/time ] || scripts/install-deps.sh
+[ -f "$urdf" ] || { echo "bench-batch: $urdf not found; set FVX_REAL_DATA or give a URDF" >&2; exit 1; }
+slots="$(nproc)"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+# plan LABEL SHARDS OPTIONS...: one row of the table.
+plan() {
+  local label="$1" n="$2"; shift 2
+  local dir="$tmp/plan-$label-$n" start merge_start end
+  start=$(date +%s.%N)
+  "$fvx" batch capmap "$urdf" "$@" --threads 1 --shards "$n" -o "$dir" > /dev/null
+  parallel -j "$slots" --joblog "$dir/joblog" < "$dir/tasks.txt"
+  merge_start=$(date +%s.%N)
+  sh "$dir/merge.sh" > /dev/null
+  end=$(date +%s.%N)
+  local same=no
+  cmp -s "$tmp/one.fcm" "$dir/map.fcm" && same=yes
+  awk -F'\t' 'NR > 1 { print $4 }' "$dir/joblog" | sort -g > "$tmp/runtimes"
+  local samples
+  samples=$(cat "$dir"/parts/*.json | jq -s 'map(.results.fk_samples) | add')
+  awk -v label="$label" -v n="$n" -v one="$one_s" -v s="$start" -v m="$merge_start" -v e="$end" -v same="$same" \
+      -v samples="$samples" '{ t[NR] = $1 } END {
+    printf "| %s | %d | %d | %.2f | %.2f | %s | %.2f / %.2f / %.2f | %s |\n", label, n, samples, e - s, (e - s) / one, same,
+      t[1], t[int((NR + 1) / 2)], t[NR], (n >= 64 ? sprintf("%.2f", t[NR] + (e - m)) : "-") }' "$tmp/runtimes"
+}
+
+voxel="${FVX_BATCH_VOXEL:-0.025}"
+opts=(--base "$base" --tip "$tip" --voxel "$voxel" --directions 200)
+/usr/bin/time -f '%e' -o "$tmp/one.time" "$fvx" capmap build "$urdf" "${opts[@]}" -o "$tmp/one.fcm" > "$tmp/one.json"
+one_s="$(cat "$tmp/one.time")"
+budget="$(jq '.results.fk_samples' "$tmp/one.json")"
+echo "one process, fk-witness at $voxel m, $slots threads: $one_s s, $budget configurations drawn"
+printf '| shards | N | configurations drawn | batch s (plan, %s slots, merge) | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n' "$slots"
+printf '|---|---|---|---|---|---|---|---|\n'
+for n in ${FVX_BATCH_SLAB_SHARDS:-${FVX_BATCH_SHARDS:-2 8 64}}; do plan slab "$n" "${opts[@]}"; done
+for n in ${FVX_BATCH_SHARDS:-2 8 64}; do plan samples "$n" "${opts[@]}" --shard-split samples --fk-samples "$budget"; done
+plan samples-2x 8 "${opts[@]}" --shard-split samples --fk-samples "$((2 * budget))"
+
+ik_voxel="${FVX_BATCH_IK_VOXEL:-0.05}"
+if [ "$ik_voxel" != 0 ]; then
+  opts=(--base "$base" --tip "$tip" --voxel "$ik_voxel" --directions 200 --method fk-seeded-ik)
+  /usr/bin/time -f '%e' -o "$tmp/one.time" "$fvx" capmap build "$urdf" "${opts[@]}" -o "$tmp/one.fcm" > /dev/null
+  one_s="$(cat "$tmp/one.time")"
+  echo
+  echo "one process, fk-seeded-ik at $ik_voxel m, $slots threads: $one_s s"
+  printf '| shards | N | configurations drawn | batch s | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n'
+  printf '|---|---|---|---|---|---|---|---|\n'
+  for n in 2 8; do plan ik-slab "$n" "${opts[@]}"; done
+fi
