@@ -26,10 +26,13 @@ slots="$(nproc)"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 
-# plan LABEL SHARDS OPTIONS...: one row of the table.
+# plan LABEL SHARDS OPTIONS...: one row of the table, against the one-process build of the
+# same options run just before it (this machine's speed drifts by tens of percent).
 plan() {
   local label="$1" n="$2"; shift 2
-  local dir="$tmp/plan-$label-$n" start merge_start end
+  local dir="$tmp/plan-$label-$n" start merge_start end one_s
+  /usr/bin/time -f '%e' -o "$tmp/one.time" "$fvx" capmap build "$urdf" "${one_opts[@]}" -o "$tmp/one.fcm" > /dev/null
+  one_s="$(cat "$tmp/one.time")"
   start=$(date +%s.%N)
   "$fvx" batch capmap "$urdf" "$@" --threads 1 --shards "$n" -o "$dir" > /dev/null
   parallel -j "$slots" --joblog "$dir/joblog" < "$dir/tasks.txt"
@@ -43,30 +46,30 @@ plan() {
   samples=$(cat "$dir"/parts/*.json | jq -s 'map(.results.fk_samples) | add')
   awk -v label="$label" -v n="$n" -v one="$one_s" -v s="$start" -v m="$merge_start" -v e="$end" -v same="$same" \
       -v samples="$samples" '{ t[NR] = $1 } END {
-    printf "| %s | %d | %d | %.2f | %.2f | %s | %.2f / %.2f / %.2f | %s |\n", label, n, samples, e - s, (e - s) / one, same,
+    printf "| %s | %d | %d | %.2f | %.2f | %.2f | %s | %.2f / %.2f / %.2f | %s |\n", label, n, samples, one, e - s, (e - s) / one, same,
       t[1], t[int((NR + 1) / 2)], t[NR], (n >= 64 ? sprintf("%.2f", t[NR] + (e - m)) : "-") }' "$tmp/runtimes"
 }
 
+header() {
+  printf '| shards | N | configurations drawn | one process s (%s threads, just before) | batch s (plan, %s slots, merge) | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n' "$slots" "$slots"
+  printf '|---|---|---|---|---|---|---|---|---|\n'
+}
+
 voxel="${FVX_BATCH_VOXEL:-0.025}"
-opts=(--base "$base" --tip "$tip" --voxel "$voxel" --directions 200)
-/usr/bin/time -f '%e' -o "$tmp/one.time" "$fvx" capmap build "$urdf" "${opts[@]}" -o "$tmp/one.fcm" > "$tmp/one.json"
-one_s="$(cat "$tmp/one.time")"
-budget="$(jq '.results.fk_samples' "$tmp/one.json")"
-echo "one process, fk-witness at $voxel m, $slots threads: $one_s s, $budget configurations drawn"
-printf '| shards | N | configurations drawn | batch s (plan, %s slots, merge) | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n' "$slots"
-printf '|---|---|---|---|---|---|---|---|\n'
-for n in ${FVX_BATCH_SLAB_SHARDS:-${FVX_BATCH_SHARDS:-2 8 64}}; do plan slab "$n" "${opts[@]}"; done
-for n in ${FVX_BATCH_SHARDS:-2 8 64}; do plan samples "$n" "${opts[@]}" --shard-split samples --fk-samples "$budget"; done
-plan samples-2x 8 "${opts[@]}" --shard-split samples --fk-samples "$((2 * budget))"
+one_opts=(--base "$base" --tip "$tip" --voxel "$voxel" --directions 200)
+"$fvx" capmap build "$urdf" "${one_opts[@]}" -o "$tmp/one.fcm" > "$tmp/one.json"
+budget="$(jq '.results.fk_samples' "$tmp/one.json")"  # what one process draws: the samples shards' budget
+echo "fk-witness at $voxel m: one process draws $budget configurations"
+header
+for n in ${FVX_BATCH_SLAB_SHARDS:-${FVX_BATCH_SHARDS:-2 8 64}}; do plan slab "$n" "${one_opts[@]}"; done
+for n in ${FVX_BATCH_SHARDS:-2 8 64}; do plan samples "$n" "${one_opts[@]}" --shard-split samples --fk-samples "$budget"; done
+plan samples-2x 8 "${one_opts[@]}" --shard-split samples --fk-samples "$((2 * budget))"
 
 ik_voxel="${FVX_BATCH_IK_VOXEL:-0.05}"
 if [ "$ik_voxel" != 0 ]; then
-  opts=(--base "$base" --tip "$tip" --voxel "$ik_voxel" --directions 200 --method fk-seeded-ik)
-  /usr/bin/time -f '%e' -o "$tmp/one.time" "$fvx" capmap build "$urdf" "${opts[@]}" -o "$tmp/one.fcm" > /dev/null
-  one_s="$(cat "$tmp/one.time")"
+  one_opts=(--base "$base" --tip "$tip" --voxel "$ik_voxel" --directions 200 --method fk-seeded-ik)
   echo
-  echo "one process, fk-seeded-ik at $ik_voxel m, $slots threads: $one_s s"
-  printf '| shards | N | configurations drawn | batch s | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n'
-  printf '|---|---|---|---|---|---|---|---|\n'
-  for n in 2 8; do plan ik-slab "$n" "${opts[@]}"; done
+  echo "fk-seeded-ik at $ik_voxel m"
+  header
+  for n in 2 8; do plan ik-slab "$n" "${one_opts[@]}"; done
 fi

@@ -10,6 +10,7 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libtf2-dev  # ROS 1 bags, without ROS
   libgtest-dev libgmock-dev libbenchmark-dev
   parallel slurm-wlm munge  # fvx batch plans run by GNU parallel and by a local Slurm (tests)
+  openssh-server openssh-client  # ... and by GNU parallel on a host reached by ssh (a local sshd, tests)
   clang libclang-rt-dev llvm  # scripts/sanitize.sh and scripts/fuzz.sh: ASan, UBSan, libFuzzer, symbolizer
 )
 

@@ -87,6 +87,12 @@ TurnFrame turn_from_json(const nlohmann::json& j) {
   return f;
 }
 
+/// LEB128: 7 bits a byte, low first, the high bit set on every byte but the last.
+void put_varint(std::string& out, std::uint64_t value) {
+  for (; value >= 0x80; value >>= 7) out.push_back(char((value & 0x7f) | 0x80));
+  out.push_back(char(value));
+}
+
 /// Reads little-endian values from the bytes of a file, refusing to run past its end.
 struct Reader {
   const std::string& bytes;
@@ -99,6 +105,17 @@ struct Reader {
     std::memcpy(&value, bytes.data() + at, sizeof(T));
     at += sizeof(T);
     return value;
+  }
+  /// A varint (put_varint) that ends before `end` and fits 63 bits.
+  std::uint64_t varint(std::size_t end) {
+    std::uint64_t value = 0;
+    for (int shift = 0; shift < 63; shift += 7) {
+      if (at >= end) throw FileError(path, "a round's bits run past its bytes");
+      const auto byte = std::uint8_t(bytes[at++]);
+      value |= std::uint64_t(byte & 0x7f) << shift;
+      if (!(byte & 0x80)) return value;
+    }
+    throw FileError(path, "a round's bits hold a number of more than 63 bits");
   }
 };
 
@@ -121,7 +138,14 @@ void CapabilityMap::save(const std::string& path) const {
     put<std::uint64_t>(out, sample_rounds_.size());
     for (const SampleRound& r : sample_rounds_) {
       put<std::uint64_t>(out, r.samples), put<std::uint64_t>(out, r.known), put<std::uint64_t>(out, r.fresh.size());
-      for (const auto& [bit, count] : r.fresh) put<std::int64_t>(out, bit), put<std::uint32_t>(out, count);
+      std::string entries;  // the gap to the bit before minus one, and the count minus one, as varints
+      std::int64_t previous = -1;
+      for (const auto& [bit, count] : r.fresh) {
+        put_varint(entries, std::uint64_t(bit - previous - 1)), put_varint(entries, count - 1u);
+        previous = bit;
+      }
+      put<std::uint64_t>(out, entries.size());
+      out += entries;
     }
     put<std::uint64_t>(out, fnv1a(out, kFnvBasis));
     write_file_atomically(path, [&](std::ostream& s) { s.write(out.data(), std::streamsize(out.size())); });
@@ -201,27 +225,31 @@ std::vector<TurnWitness> read_turn_witnesses(Reader& r, const CapabilityHeader& 
   return witnesses;
 }
 
-/// A samples shard's rounds: each within a round's size, its fresh bits in the grid, ascending,
-/// each counted at least once, no more configurations than the round's and the budget's.
+/// A samples shard's rounds: each within a round's size, its fresh bits in the grid, ascending
+/// (by construction: gaps), no more configurations than the round's and the budget's.
 std::vector<SampleRound> read_sample_rounds(Reader& r, const CapabilityHeader& h, const std::string& path) {
   const std::int64_t bits = std::int64_t(h.dims[0]) * h.dims[1] * h.dims[2] * h.directions;
   const auto count = r.get<std::uint64_t>();
-  if (count > (r.bytes.size() - r.at) / 24) throw FileError(path, "truncated capability map");
+  if (count > (r.bytes.size() - r.at) / 32) throw FileError(path, "truncated capability map");
   std::vector<SampleRound> rounds(count);
   std::uint64_t drawn = 0;
   for (SampleRound& round : rounds) {
     round.samples = r.get<std::uint64_t>(), round.known = r.get<std::uint64_t>();
-    const auto fresh = r.get<std::uint64_t>();
-    if (fresh > (r.bytes.size() - r.at) / 12) throw FileError(path, "truncated capability map");
+    const auto fresh = r.get<std::uint64_t>(), length = r.get<std::uint64_t>();
+    if (length > r.bytes.size() - r.at) throw FileError(path, "truncated capability map");
+    if (fresh > length / 2) throw FileError(path, "a round names more bits than its bytes hold");
+    const std::size_t end = r.at + std::size_t(length);
     std::uint64_t counted = round.known;
+    std::int64_t previous = -1;
     for (std::uint64_t i = 0; i < fresh; ++i) {
-      const auto bit = r.get<std::int64_t>();
-      const auto n = r.get<std::uint32_t>();
-      if (bit < 0 || bit >= bits || n < 1 || (!round.fresh.empty() && bit <= round.fresh.back().first))
-        throw FileError(path, "a round's bits are not ascending bits of the grid, each counted");
-      round.fresh.emplace_back(bit, n);
+      const std::uint64_t gap = r.varint(end), n = r.varint(end) + 1;
+      if (gap >= std::uint64_t(bits - previous - 1) || n > kWitnessRound)
+        throw FileError(path, "a round's bits are not bits of the grid, each counted at most 2^18 times");
+      previous += std::int64_t(gap) + 1;
+      round.fresh.emplace_back(previous, std::uint32_t(n));
       counted += n;
     }
+    if (r.at != end) throw FileError(path, "a round's bytes do not end with its bits");
     if (round.samples > kWitnessRound || counted > round.samples)
       throw FileError(path, "a round counts more configurations than it holds (at most 2^18)");
     drawn += round.samples;

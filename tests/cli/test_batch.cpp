@@ -150,6 +150,43 @@ TEST(CliBatch, TheSlurmArrayAndItsDependentMergeGiveTheSingleBuild) {
 // Replays of a list of sequences, run by GNU parallel (-j2) and one after another: the merged
 // tables are the same bytes, every sequence's rows in list order without the columns of
 // seconds; a missing part stops the merge, which then writes nothing.
+// Hosts reached by ssh: an sshd on 127.0.0.1 (scripts/sshd-local.sh), one slot there and one
+// here (`parallel --sshlogin 1/127.0.0.1,1/:`): each side runs tasks of a capmap plan, which
+// merge into the one-process build, and of a sweep, which merges as the same sweep run here.
+TEST(CliBatch, HostsReachedBySshRunTheirShareAndMergeAlike) {
+  ASSERT_EQ(::getuid(), 0u) << "the ssh test starts an sshd, which needs root (CI runs as root)";
+  ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0) << "GNU parallel is missing (scripts/install-deps.sh)";
+  const TempDir dir;
+  const std::string local = "'" + std::string(std::getenv("FVX_SOURCE_DIR")) + "/scripts/sshd-local.sh' ";
+  struct Stop {
+    std::string command;
+    ~Stop() { std::system(command.c_str()); }
+  } stop{local + "stop '" + dir / "sshd" + "'"};
+  ASSERT_EQ(sh(dir, local + "start '" + dir / "sshd" + "' > ssh.txt"), 0) << "a local sshd did not start";
+  const std::string parallel = "PARALLEL_SSH=\"$(cat ssh.txt)\" parallel --sshlogin 1/127.0.0.1,1/: ";
+  ASSERT_EQ(run_fvx(dir, "capmap build " + fvx_arm() + kArmOptions + " -o one.fcm").status, 0);
+  ASSERT_EQ(run_fvx(dir, "batch capmap " + fvx_arm() + kArmOptions + " --shards 4 -o plan").status, 0);
+  ASSERT_EQ(sh(dir, parallel + "--joblog plan/joblog < plan/tasks.txt > /dev/null 2> err.txt"), 0) << slurp(dir / "err.txt");
+  const std::string log = slurp(dir / "plan/joblog");
+  EXPECT_NE(log.find("\t127.0.0.1\t"), std::string::npos) << "no task ran on the ssh host: " << log;
+  EXPECT_NE(log.find("\t:\t"), std::string::npos) << "no task ran here: " << log;
+  ASSERT_EQ(sh(dir, "sh plan/merge.sh > /dev/null"), 0);
+  EXPECT_TRUE(slurp(dir / "plan/map.fcm") == slurp(dir / "one.fcm")) << "the batch over ssh differs from one build";
+
+  const std::string arm = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm";
+  for (const std::string plan : {"a", "b"})
+    ASSERT_EQ(run_fvx(dir, "batch sweep --scenes closed-box --planners random --seeds 1-2 --max-views 1 -o " + plan +
+                               " -- --capmap '" + arm + ".fcm' --arm '" + arm + ".urdf' --resolution 0.05 --threads 1")
+                  .status,
+              0);
+  ASSERT_EQ(sh(dir, parallel + "--joblog a/joblog < a/tasks.txt > /dev/null 2> err.txt"), 0) << slurp(dir / "err.txt");
+  EXPECT_NE(slurp(dir / "a/joblog").find("\t127.0.0.1\t"), std::string::npos) << slurp(dir / "a/joblog");
+  ASSERT_EQ(sh(dir, "while IFS= read -r task; do sh -c \"$task\" || exit 1; done < b/tasks.txt"), 0);
+  ASSERT_EQ(sh(dir, "sh a/merge.sh > /dev/null && sh b/merge.sh > /dev/null"), 0);
+  for (const char* file : {"summary.md", "runs.csv", "coverage.png"})
+    EXPECT_TRUE(slurp(dir / ("a/" + std::string(file))) == slurp(dir / ("b/" + std::string(file)))) << file;
+}
+
 TEST(CliBatch, ReplaysOfAListMergeIntoTheSameTableInParallelOrOneByOne) {
   ASSERT_EQ(std::system("parallel --version > /dev/null 2>&1"), 0) << "GNU parallel is missing (scripts/install-deps.sh)";
   const TempDir dir;

@@ -98,6 +98,19 @@ std::string rechecksummed(std::string bytes) {
   return bytes;
 }
 
+/// `bytes` (a samples shard) with `from` replaced by `to` in its header JSON, the header's
+/// length and the checksum made right again.
+std::string with_header_edit(const std::string& bytes, const std::string& from, const std::string& to) {
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  std::string header = bytes.substr(16, length);
+  EXPECT_NE(header.find(from), std::string::npos) << from;
+  header.replace(header.find(from), from.size(), to);
+  length = std::uint32_t(header.size());
+  return rechecksummed(bytes.substr(0, 12) + std::string(reinterpret_cast<const char*>(&length), 4) + header +
+                       bytes.substr(16 + header.size() - to.size() + from.size()));
+}
+
 // Rounds that lie, with a valid checksum: each refused on one line naming the problem.
 TEST(SampleShards, CorruptRoundsAreRefusedWithTheirProblem) {
   const test::TempDir dir;
@@ -107,21 +120,26 @@ TEST(SampleShards, CorruptRoundsAreRefusedWithTheirProblem) {
   const std::string good = bytes_of(dir / "s.fcm");
   std::uint32_t header = 0;
   std::memcpy(&header, good.data() + 12, 4);
-  const std::size_t rounds_at = 16 + header, first_round = rounds_at + 8, first_bit = first_round + 24;
+  // The rounds: count; per round samples, known, bits, the bits' byte length, the bits.
+  const std::size_t rounds_at = 16 + header, first_round = rounds_at + 8, bits_at = first_round + 32;
+  std::uint64_t fresh = 0, length = 0;
+  std::memcpy(&fresh, good.data() + first_round + 16, 8);
+  std::memcpy(&length, good.data() + first_round + 24, 8);
   const auto edited = [&](std::size_t at, std::uint64_t value, std::size_t size) {
     std::string b = good;
     std::memcpy(b.data() + at, &value, size);
     return rechecksummed(b);
   };
-  std::int64_t bit0 = 0;
-  std::memcpy(&bit0, good.data() + first_bit, 8);
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {edited(rounds_at, 1u << 30, 8), "truncated"},                     // more rounds than bytes
+      {edited(rounds_at, 1u << 30, 8), "truncated"},                       // more rounds than bytes
       {edited(first_round, kWitnessRound + 1, 8), "more configurations"},  // a round too large
       {edited(first_round + 8, kWitnessRound, 8), "more configurations"},  // known beyond the round
-      {edited(first_bit, std::uint64_t(-5), 8), "ascending bits of the grid"},
-      {edited(first_bit + 12, std::uint64_t(bit0), 8), "ascending bits of the grid"},  // the second bit = the first
-      {edited(first_bit + 8, 0, 4), "ascending bits of the grid"},                      // counted 0 times
+      {edited(first_round + 16, length, 8), "more bits than its bytes hold"},
+      {edited(first_round + 16, fresh - 1, 8), "do not end with its bits"},
+      {edited(first_round + 24, std::uint64_t(1) << 40, 8), "truncated"},
+      {edited(bits_at + length - 1, 0x80, 1), "run past its bytes"},  // the last varint goes on
+      {with_header_edit(good, "\"directions\":50", "\"directions\":1"), "not bits of the grid"},
+      {with_header_edit(good, "\"fk_samples\":524288", "\"fk_samples\":1000"), "more configurations than the budget"},
       {good.substr(0, rounds_at) + good.substr(good.size() - 8), "truncated"},
   };
   for (const auto& [bytes, mention] : cases) {
