@@ -58,8 +58,8 @@ command -v gnuplot >/dev/null || scripts/install-deps.sh
 threads=$(( $(nproc) / jobs )); [ "$threads" -ge 1 ] || threads=1
 "$fvx" batch sweep --scenes "$scenes" --planners "$planners" --seeds "$seeds" --max-views "$max_views" -o "$out" \
   -- --capmap data/arms/fvx-arm.fcm --arm data/arms/fvx-arm.urdf --threads "$threads" > /dev/null
-todo="$("$fvx" batch status "$out" 2> /dev/null | sed -n 's/.*"remaining": *\([0-9]*\).*/\1/p' | head -1)"
-echo "evaluate-planners: ${todo:-?} runs to do of $(wc -l < "$out/tasks.txt"), $jobs at a time, in $out/" >&2
+remaining="$("$fvx" batch status "$out" 2> /dev/null | sed -n 's/.*"remaining": *\([0-9]*\).*/\1/p' | head -1)"
+echo "evaluate-planners: ${remaining:-?} runs to do of $(wc -l < "$out/tasks.txt"), $jobs at a time, in $out/" >&2
 failed=0
 tr '\n' '\0' < "$out/tasks.txt" | xargs -0 -P "$jobs" -n 1 sh -c || failed=1
 "$fvx" batch merge "$out" > /dev/null
