@@ -494,5 +494,24 @@ TEST(CliReplayRealData, RedwoodFirstThirtyFramesRunToTheEnd) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out/maps/view030.ot"));
 }
 
+// The 211 Redwood frames at 2.5 cm, integrated without registration (the poses of the
+// trajectory): every per-view map is byte for byte the one recorded in
+// tests/data/redwood-211-maps.sha256. Integration is exact (OctoMap's insertPointCloud, bit
+// for bit: test_integrate), so a faster integration must keep these bytes. Recorded with the
+// binary of 3a891ed by the command below and `sha256sum view*.ot` in out/maps.
+TEST(CliReplayRealData, Redwood211FramesGiveTheRecordedMaps) {
+  FVX_REAL_DATA_OR_SKIP(root, "redwood-livingroom1-micro");
+  const TempDir dir;
+  const RunResult r = run_fvx(dir, "replay --scans '" + root + "/depth/*.png' --trajectory '" + root +
+                                       "/trajectory_open3d_estimated.log' --fx 525 --fy 525 --cx 319.5 --cy 239.5"
+                                       " -r 0.025 --no-capmap --no-register --search-every 0 -o out --format csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(line_count(r.out), 212u);  // the header and 211 views
+  const std::string sums = source("tests/data/redwood-211-maps.sha256");
+  const std::string check = "cd '" + (dir / "out/maps") + "' && sha256sum --quiet -c '" + sums + "' > '" +
+                            (dir / "check.txt") + "' 2>&1";
+  EXPECT_EQ(std::system(check.c_str()), 0) << slurp(dir / "check.txt");
+}
+
 }  // namespace
 }  // namespace fvx::test
