@@ -161,11 +161,13 @@ std::vector<Candidate> candidates_for(const Arm& arm, const BuildConfig& config,
 }
 
 /// The bit of the sensor pose `T_base_sensor`: (voxel, nearest direction) as one number, −1
-/// outside.
+/// outside. The banded search finds nearest()'s direction with about a quarter of its dot
+/// products (the brute force was a third of a youBot build's time, measured with perf).
 std::int64_t witness_bit(const Arm& arm, const CapabilityMap& map, const Eigen::Isometry3d& T_base_sensor) {
   const std::int64_t voxel = map.voxel_of(T_base_sensor.translation());
   if (voxel < 0) return -1;
-  return voxel * map.directions().size() + map.directions().nearest(T_base_sensor.linear() * arm.config().viewing_axis_sensor);
+  return voxel * map.directions().size() +
+         map.directions().nearest_banded(T_base_sensor.linear() * arm.config().viewing_axis_sensor);
 }
 
 /// Witnesses [i, end) of a chunk from `rng`. Without a revolute first joint, one configuration

@@ -32,7 +32,8 @@ class DirectionSet {
   /// The same index as nearest(), searching only the directions whose polar angle is close
   /// enough to beat the best found (|θᵢ − θ| ≤ the angle to it): about N/4 dot products
   /// instead of N, fewer with `hint` (an index near the answer, e.g. the last one of a
-  /// sweep). The oracle of it is nearest() (test).
+  /// sweep). `d` may be off unit length by rounding (a rotated unit axis). The oracle of it
+  /// is nearest() (test).
   int nearest_banded(const Eigen::Vector3d& d, int hint = -1) const;
   /// The indices of the directions within `angle_rad` of `d` (unit), ascending.
   std::vector<int> within(const Eigen::Vector3d& d, double angle_rad) const;

@@ -25,6 +25,12 @@ TEST(DirectionSet, BandedNearestIsTheBruteForceNearest) {
       if (i + 1 < n) queries.push_back((set[i] + set[i + 1]).normalized());
     }
     for (int i = 0; i < 20000; ++i) queries.push_back(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+    // Rotated unit axes, as the fk-witness build asks: off unit length by rounding.
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::Quaterniond turn = Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
+      queries.push_back(turn.toRotationMatrix() * Eigen::Vector3d::UnitZ());
+      queries.push_back((1.0 + 1e-14 * normal(rng)) * queries.back());  // and a little more
+    }
     int wrong = 0;
     for (const Eigen::Vector3d& q : queries) {
       const int expected = set.nearest(q);
