@@ -62,11 +62,13 @@ bool for_each_ray_key(const octomap::OcTree& tree, const octomap::point3d& origi
 }
 
 /// The same traversal, specialised for marking a flat bitmap: identical arithmetic and tie
-/// breaking, but the axis is chosen without branches, the key lives packed in one integer
-/// (x | y << 16 | z << 32) so the end test is one comparison, and the bit index steps by a
-/// fixed stride per axis. `mark(bit_index)` gets the index of each visited cell;
-/// `index_of(key)` gives the index of a key. Keys stay inside [0, 0xFFFF] (they are between
-/// two keys of the key space), so the packed additions never carry across fields.
+/// breaking, but the cell is its bit index alone, stepped by a fixed stride per axis, and the
+/// end test compares indices (every cell a ray visits lies in the bitmap's box, where the
+/// index is one-to-one: the caller's box holds both ends with a margin for rounding).
+/// `mark(bit_index)` gets the index of each visited cell; `index_of(key)` gives a key's.
+/// Each step does one compare pair, one add and one length test, whose minimum of the t's
+/// the next step's axis choice reuses: a fifth faster per frame than the branch-free form
+/// that added to all three t's and kept a packed key beside the index (README, Speed).
 template <typename IndexOf, typename Mark>
 bool mark_ray_cells(const octomap::OcTree& tree, const octomap::point3d& origin,
                     const octomap::point3d& end, const std::int64_t stride[3], IndexOf&& index_of,
@@ -76,23 +78,18 @@ bool mark_ray_cells(const octomap::OcTree& tree, const octomap::point3d& origin,
     return false;
   if (key_origin == key_end) return true;
   std::int64_t index = index_of(key_origin);
+  const std::int64_t index_end = index_of(key_end);
   mark(index);
 
   octomap::point3d direction = end - origin;
   const float length = float(direction.norm());
   direction /= length;
 
-  auto pack = [](const octomap::OcTreeKey& k) {
-    return std::int64_t(k[0]) | std::int64_t(k[1]) << 16 | std::int64_t(k[2]) << 32;
-  };
-  const std::int64_t packed_end = pack(key_end);
-  std::int64_t packed = pack(key_origin);
   const double resolution = tree.getResolution();
-  std::int64_t packed_step[3], index_step[3];
+  std::int64_t index_step[3];
   double t_max[3], t_delta[3];
   for (unsigned i = 0; i < 3; ++i) {
     const int step = direction(i) > 0.0 ? 1 : (direction(i) < 0.0 ? -1 : 0);
-    packed_step[i] = std::int64_t(step) * (std::int64_t(1) << (16 * i));  // step < 0: no left shift of a negative (UB in C++17)
     index_step[i] = step * stride[i];
     if (step != 0) {
       double voxel_border = tree.keyToCoord(key_origin[i]);
@@ -105,23 +102,29 @@ bool mark_ray_cells(const octomap::OcTree& tree, const octomap::point3d& origin,
     }
   }
 
-  // The t's live in registers: indexing an array by the chosen axis would put a store and a
-  // load on the loop's critical path. Adding 0.0 to the axes not chosen is exact.
+  // The t's live in named variables, not an array indexed by the axis (a store and a load on
+  // the loop's critical path). dim = t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2), as
+  // computeRayKeys: `first` and `smaller` are carried from the previous step's length test.
   double t0 = t_max[0], t1 = t_max[1], t2 = t_max[2];
   const double d0 = t_delta[0], d1 = t_delta[1], d2 = t_delta[2];
   const double length_d = length;
+  bool first = t0 < t1;
+  double smaller = first ? t0 : t1;
   while (true) {
-    // dim = t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2), without branches.
-    const bool first = t0 < t1;
-    const double smaller = first ? t0 : t1;
     const unsigned dim = smaller < t2 ? (first ? 0u : 1u) : 2u;
-    packed += packed_step[dim];
     index += index_step[dim];
-    t0 += dim == 0 ? d0 : 0.0;
-    t1 += dim == 1 ? d1 : 0.0;
-    t2 += dim == 2 ? d2 : 0.0;
-    if (packed == packed_end) return true;
-    if (std::min(std::min(t0, t1), t2) > length_d) return true;
+    if (dim == 0)
+      t0 += d0;
+    else if (dim == 1)
+      t1 += d1;
+    else
+      t2 += d2;
+    if (index == index_end) return true;
+    first = t0 < t1;
+    smaller = first ? t0 : t1;
+    // Rounding can step past the end's cell; stop once the ray is longer than the segment
+    // (min(t0, t1, t2) > length, as computeRayKeys).
+    if ((smaller < t2 ? smaller : t2) > length_d) return true;
     mark(index);
   }
 }
