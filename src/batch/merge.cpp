@@ -82,7 +82,7 @@ void merge_plan(const Plan& plan) {
   if (plan.job == "sweep") return merge_sweep(plan);
   if (plan.job == "replay") {
     const std::string table = merged_tables(plan);
-    write_file_atomically(plan.result, [&](std::ostream& out) { out << table; });
+    write_text_atomically(plan.result, table);
     return;
   }
   std::vector<capmap::CapabilityMap> shards;

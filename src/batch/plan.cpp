@@ -89,10 +89,6 @@ std::string slurm_script(const Plan& plan) {
          "exec sh -c \"$(sed -n \"${SLURM_ARRAY_TASK_ID}p\" " + shell_quote(plan.folder + "/tasks.txt") + ")\"\n";
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
 }  // namespace
 
 void write_plan(const Plan& plan) {
@@ -106,11 +102,11 @@ void write_plan(const Plan& plan) {
   for (const std::string& folder : {plan.folder, plan.folder + "/parts", plan.folder + "/slurm"}) create_folder(folder);
   std::string tasks;
   for (const Task& t : plan.tasks) tasks += t.command + "\n";
-  write_text(plan.folder + "/tasks.txt", tasks);
-  write_text(plan.folder + "/merge.sh", "#!/bin/sh\n# fvx batch " + plan.job + ": joins the outputs of tasks.txt.\nexec " +
-                                            plan.merge_command + "\n");
-  write_text(plan.folder + "/slurm.sbatch", slurm_script(plan));
-  write_text(plan_path, plan_json(plan).dump(2) + "\n");
+  write_text_atomically(plan.folder + "/tasks.txt", tasks);
+  write_text_atomically(plan.folder + "/merge.sh", "#!/bin/sh\n# fvx batch " + plan.job +
+                                                       ": joins the outputs of tasks.txt.\nexec " + plan.merge_command + "\n");
+  write_text_atomically(plan.folder + "/slurm.sbatch", slurm_script(plan));
+  write_text_atomically(plan_path, plan_json(plan).dump(2) + "\n");
 }
 
 Plan read_plan(const std::string& folder) {

@@ -206,10 +206,6 @@ std::pair<std::string, std::string> plot_files(const std::vector<Run>& runs, int
   return {dat, gp};
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
 /// gnuplot draws coverage.png in `folder` (through coverage.png.tmp, renamed when whole).
 void draw_plot(const std::string& folder) {
   const std::string q = shell_quote(folder);
@@ -230,14 +226,14 @@ void merge_sweep(const Plan& plan) {
   if (runs.empty()) throw FileError(plan.folder, "a sweep plan without runs");
   const auto [dat, gp] = plot_files(runs, max_views);
   const auto [md, csv] = summary(runs, max_views);
-  write_text(plan.folder + "/coverage.dat", dat);
-  write_text(plan.folder + "/coverage.gp", gp);
+  write_text_atomically(plan.folder + "/coverage.dat", dat);
+  write_text_atomically(plan.folder + "/coverage.gp", gp);
   draw_plot(plan.folder);
-  write_text(plan.folder + "/runs.csv", runs_csv(runs));
-  write_text(plan.folder + "/coverage.csv", coverage_csv(runs));
-  write_text(plan.folder + "/timing.csv", timing_csv(runs));
-  write_text(plan.folder + "/summary.csv", csv);
-  write_text(plan.result, md);  // last: its existence means the merge is whole
+  write_text_atomically(plan.folder + "/runs.csv", runs_csv(runs));
+  write_text_atomically(plan.folder + "/coverage.csv", coverage_csv(runs));
+  write_text_atomically(plan.folder + "/timing.csv", timing_csv(runs));
+  write_text_atomically(plan.folder + "/summary.csv", csv);
+  write_text_atomically(plan.result, md);  // last: its existence means the merge is whole
 }
 
 }  // namespace fvx::batch

@@ -20,7 +20,7 @@ void write_report(const Json& report, const std::string& path) {
       throw Error(std::string("cannot write the report to standard output: ") + std::strerror(errno));
     return;
   }
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 Progress::Progress(bool forced) : tty_(::isatty(STDERR_FILENO) != 0) { enabled_ = forced || tty_; }

@@ -93,4 +93,8 @@ void create_folder(const std::string& path) {
   if (ec) throw FileError(path, "cannot create the folder: " + ec.message());
 }
 
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
 }  // namespace fvx

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes the small hand-made seeds of the fuzz corpora (tests/fuzz/corpus/<harness>/).
 
-Run once from anywhere; the files are committed. The .bt, .ot and .fcm seeds come from the
-fvx binary (see corpus/README.md); scripts/fuzz.sh adds the project's data/ files and, when
+Run once from anywhere; the files are committed. The .bt, .ot and .fcm seeds are not written
+here: they were made with the fvx binary (integrate, capmap build) and are committed as
+they are. scripts/fuzz.sh adds the project's data/ files and, when
 FVX_REAL_DATA is set, small real files to the working corpus at run time.
 """
 import os

@@ -14,6 +14,9 @@ namespace fvx {
 /// it was, and a FileError (or the original exception) propagates.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+/// write_file_atomically with `text` as the whole content.
+void write_text_atomically(const std::string& path, const std::string& text);
+
 /// Same, for writers that insist on a file name (e.g. PCL, OpenCV): `write` receives the
 /// temporary path and must create that file. `extension` is kept on the temporary so that
 /// writers that dispatch on it work.
