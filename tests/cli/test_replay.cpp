@@ -480,12 +480,16 @@ TEST(CliReplayRealData, SlambookFiveFramesRunToTheEnd) {
   EXPECT_GT(rows[4]["known_dm3"].get<double>(), rows[0]["known_dm3"].get<double>());
 }
 
+/// fvx replay of the Redwood living-room frames in `root` with their trajectory, then `options`.
+std::string redwood_replay(const std::string& root, const std::string& options) {
+  return "replay --scans '" + root + "/depth/*.png' --trajectory '" + root + "/trajectory_open3d_estimated.log' " +
+         options;
+}
+
 TEST(CliReplayRealData, RedwoodFirstThirtyFramesRunToTheEnd) {
   FVX_REAL_DATA_OR_SKIP(root, "redwood-livingroom1-micro");
   const TempDir dir;
-  const RunResult r = run_fvx(dir, "replay --scans '" + root + "/depth/*.png' --trajectory '" + root +
-                                       "/trajectory_open3d_estimated.log' --no-capmap --no-register -r 0.05 --to 30 "
-                                       "-o out --format json");
+  const RunResult r = run_fvx(dir, redwood_replay(root, "--no-capmap --no-register -r 0.05 --to 30 -o out --format json"));
   ASSERT_EQ(r.status, 0) << r.err;
   const json rows = json::parse(r.out)["results"]["rows"];
   ASSERT_EQ(rows.size(), 30u);
@@ -502,9 +506,8 @@ TEST(CliReplayRealData, RedwoodFirstThirtyFramesRunToTheEnd) {
 TEST(CliReplayRealData, Redwood211FramesGiveTheRecordedMaps) {
   FVX_REAL_DATA_OR_SKIP(root, "redwood-livingroom1-micro");
   const TempDir dir;
-  const RunResult r = run_fvx(dir, "replay --scans '" + root + "/depth/*.png' --trajectory '" + root +
-                                       "/trajectory_open3d_estimated.log' --fx 525 --fy 525 --cx 319.5 --cy 239.5"
-                                       " -r 0.025 --no-capmap --no-register --search-every 0 -o out --format csv");
+  const RunResult r = run_fvx(dir, redwood_replay(root, "--fx 525 --fy 525 --cx 319.5 --cy 239.5 -r 0.025 --no-capmap "
+                                                        "--no-register --search-every 0 -o out --format csv"));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(line_count(r.out), 212u);  // the header and 211 views
   const std::string sums = source("tests/data/redwood-211-maps.sha256");
