@@ -58,6 +58,7 @@ const CommandSpec kExploreSpec = {
                                           "limit: none (default: no measurement, as a Kinect) or free (a point "
                                           "beyond the limit that clears the ray up to it, as a laser's max-range "
                                           "return)", "/config/pipeline/clear_beyond_range"},
+                 pipeline::discretize_option("/config/pipeline/discretize"),
                  {"format", 0, "NAME", "the table on stdout: markdown (default), csv or json", "-"},
                  threads_option("/config/pipeline/nbv/threads", "threads for rendering and the search"),
              },
@@ -92,6 +93,7 @@ session::ExploreConfig parse_config(const Args& args) {
     if (mode != "none" && mode != "free") throw UsageError("--no-return '" + mode + "': expected none or free");
     pc.clear_beyond_range = mode == "free";
   }
+  pc.discretize = args.has("discretize");
   pc.tie_to_search();
   config.seed = nc.seed;
   args.read("max-views", config.max_views);

@@ -182,7 +182,7 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   pc.resolution_m = parse_resolution(args, pc.resolution_m);
   pc.target_size_m = parse_target_size(args, pc.target_size_m);
   pc.hull_in_bounds = parse_void_hull(args, pc.hull_in_bounds);
-  pc.discretize = args.has("discretize");
+  if (args.has("discretize")) pc.discretize = true;  // a session's recorded choice otherwise
   args.read("unknown-depth", nc.unknown_depth_cells);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");

@@ -107,6 +107,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["hull_in_bounds"] = m.hull_in_bounds;
   j["unknown_depth_cells"] = m.unknown_depth_cells;
   j["clear_beyond_range"] = m.clear_beyond_range;
+  j["discretize"] = m.discretize;
   j["accumulation"] = m.accumulation;
   j["max_utility_vectors"] = m.max_utility_vectors;
   j["coarse_rays"] = {m.coarse_ray_cols, m.coarse_ray_rows};
@@ -134,6 +135,7 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
   flag("near_voids", m.near_voids);
   flag("hull_in_bounds", m.hull_in_bounds);
   flag("clear_beyond_range", m.clear_beyond_range);
+  flag("discretize", m.discretize);
   if (j.contains("target_size_m")) {
     m.target_size_m = r.number(j, "target_size_m");
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
@@ -274,6 +276,7 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.hull_in_bounds = pc.hull_in_bounds;
   m.unknown_depth_cells = nc.unknown_depth_cells;
   m.clear_beyond_range = pc.clear_beyond_range;
+  m.discretize = pc.discretize;
   m.accumulation = utility::to_string(nc.accumulation);
   m.max_utility_vectors = nc.max_utility_vectors;
   m.coarse_ray_cols = nc.coarse_ray_cols;

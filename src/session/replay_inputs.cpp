@@ -25,6 +25,7 @@ void apply_manifest(const Manifest& m, const std::string& dir, ReplayConfig& con
   pc.target_size_m = m.target_size_m;
   pc.hull_in_bounds = m.hull_in_bounds;
   pc.clear_beyond_range = m.clear_beyond_range;
+  pc.discretize = m.discretize;
   nc.unknown_depth_cells = m.unknown_depth_cells;
   nc.accumulation = utility::parse_accumulation(m.accumulation, dir + "/manifest.json: accumulation");
   nc.max_utility_vectors = std::size_t(m.max_utility_vectors);

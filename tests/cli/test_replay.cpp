@@ -139,6 +139,26 @@ TEST(CliReplay, RaysWithoutASurfaceClearSpaceWhenAskedAndReplayAlike) {
   EXPECT_NE(bad.err.find("--no-return"), std::string::npos) << bad.err;
 }
 
+// --discretize in the loop (the insertion fvx integrate --discretize makes, held to OctoMap's
+// discretised insertion node for node elsewhere): recorded in the session, replayed alike.
+TEST(CliReplay, DiscretisedInsertionIsRecordedAndReplayed) {
+  const TempDir dir;
+  const RunResult e = run_fvx(dir, "explore" + kScene + kArm + " --discretize --max-views 2 --format json -o session");
+  ASSERT_EQ(e.status, 0) << e.err;
+  const json explored = json::parse(e.out);
+  EXPECT_EQ(explored["config"]["pipeline"]["discretize"], true);
+  EXPECT_TRUE(session::read_manifest(dir / "session").discretize);
+  // The same first view (the start) gives another map than the exact insertion's.
+  const RunResult exact = run_fvx(dir, "explore" + kScene + kArm + " --max-views 1 -o exact");
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  EXPECT_FALSE(slurp(dir / "session/maps/view000.ot") == slurp(dir / "exact/maps/view000.ot"));  // binary: not printed
+  const RunResult r = run_fvx(dir, "replay session -o out --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["config"]["pipeline"]["discretize"], true);
+  for (const std::string view : {"view000.ot", "view001.ot"})
+    EXPECT_TRUE(slurp(dir / ("out/maps/" + view)) == slurp(dir / ("session/maps/" + view))) << view;
+}
+
 TEST(CliReplay, ASessionReplaysToTheSameTableAndTheSameViews) {
   const TempDir dir;
   const json explored = record(dir)["results"]["rows"];

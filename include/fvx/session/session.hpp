@@ -62,6 +62,9 @@ struct Manifest {
   /// Scans hold rays without a surface as points beyond the depth limit, which clear their
   /// ray (pipeline::Config::clear_beyond_range; fvx explore --no-return free). Absent: false.
   bool clear_beyond_range = false;
+  /// Scans were integrated by OctoMap's discretised insertion (pipeline::Config::discretize;
+  /// fvx explore --discretize). Absent: false, exact insertion.
+  bool discretize = false;
   /// Algorithm 1's accumulation (nbv::Config::accumulation) and its budget. Absent:
   /// "exact", as every session before the sampled accumulation was recorded.
   std::string accumulation = "exact";
