@@ -1,5 +1,7 @@
 // Integration speed: one 640×480 Kinect frame at 2.5 cm, 4 m range, through fvx (exact and
-// --discretize) and through OctoMap's insertPointCloud (exact and discretised), in the same run;
+// --discretize; and the whole step: integrated, then frontiers, voids and frontier-voids
+// updated from the change set, as issue 21 counts it) and through OctoMap's insertPointCloud
+// (exact and discretised), in the same run;
 // and the cells the rays visit per second beside a plain dense-grid DDA (the textbook
 // Amanatides–Woo in float over a byte per cell, one thread) walking the same rays. Prints ratios against
 // the OctoMap baselines measured in this run (machines are noisy; absolute times are not).
@@ -14,6 +16,7 @@
 
 #include "../../src/map/ray_keys.hpp"
 #include "fvx/map/occupancy_map.hpp"
+#include "fvx/pipeline/pipeline.hpp"
 #include "fvx/scan/load.hpp"
 
 namespace {
@@ -22,6 +25,7 @@ constexpr double kResolutionM = 0.025;
 constexpr double kMaxRangeM = 4.0;
 
 std::vector<Eigen::Vector3f> g_points_world;
+fvx::scan::Scan g_scan;  ///< the frame, its optical frame the world
 Eigen::Vector3f g_origin_world = Eigen::Vector3f::Zero();
 
 octomap::Pointcloud octomap_cloud() {
@@ -49,6 +53,22 @@ void BM_FvxIntegrateDiscrete(benchmark::State& state) {
   }
 }
 
+/// The replay step without a search (fvx replay --no-register --search-every 0): the frame
+/// integrated into an empty map, then frontiers, voids and frontier-voids from its change set.
+void BM_FvxStep(benchmark::State& state) {
+  fvx::pipeline::Config config;
+  config.resolution_m = kResolutionM;
+  config.max_range_m = kMaxRangeM;
+  config.search = false;
+  for (auto _ : state) {
+    fvx::pipeline::State map_state(kResolutionM);
+    map_state.analysed = true;  // the empty sets are the empty map's: updated from the change set, not rebuilt
+    const fvx::pipeline::StepResult r = fvx::pipeline::integrate_step(map_state, g_scan, config);
+    benchmark::DoNotOptimize(r.analysis.void_cells.data());
+    state.counters["void_cells"] = double(r.analysis.void_cells.size());
+  }
+}
+
 void octomap_insert(benchmark::State& state, bool discretize) {
   const octomap::Pointcloud cloud = octomap_cloud();
   const octomap::point3d origin(g_origin_world.x(), g_origin_world.y(), g_origin_world.z());
@@ -63,6 +83,7 @@ void BM_OctoMapInsertPointCloudDiscrete(benchmark::State& state) { octomap_inser
 
 BENCHMARK(BM_FvxIntegrate)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_FvxIntegrateDiscrete)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_FvxStep)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_OctoMapInsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_OctoMapInsertPointCloudDiscrete)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
@@ -180,6 +201,7 @@ int main(int argc, char** argv) {
   fvx::scan::Scan scan = fvx::scan::load_scan({argv[1], std::nullopt, fvx::scan::PoseSource::Identity, std::nullopt}, load, warnings);
   fvx::scan::filter(scan, {});
   g_points_world = fvx::scan::to_world(scan);
+  g_scan = scan;
   std::printf("frame %s: %zu finite points, resolution %.3f m, max range %.1f m\n", argv[1],
               g_points_world.size(), kResolutionM, kMaxRangeM);
 
@@ -193,6 +215,8 @@ int main(int argc, char** argv) {
   const double discrete_ms = reporter.time("BM_OctoMapInsertPointCloudDiscrete");
   std::printf("\nfvx integrate vs OctoMap insertPointCloud (exact, same map):  %.2fx faster\n", exact_ms / fvx_ms);
   std::printf("fvx integrate vs OctoMap insertPointCloud (discretised):      %.2fx faster\n", discrete_ms / fvx_ms);
+  std::printf("fvx step (integrate + frontiers, voids, frontier-voids) vs OctoMap insertPointCloud (exact): %.2fx faster\n",
+              exact_ms / reporter.time("BM_FvxStep"));
   // GetAdjustedRealTime is in the benchmark's unit (ms): cells per second = visits / (ms / 1000).
   const double plain_ms = reporter.time("BM_PlainDenseGridDda");
   std::printf("cells visited per frame: %llu by fvx's rays (OctoMap's arithmetic), %llu by the dense DDA\n",

@@ -35,7 +35,8 @@ class FrontierSet {
   /// its surface: inside it every neighbour is free.
   void rebuild(const map::OccupancyMap& map);
   /// After `map` integrated a scan with these changes: re-examines each changed cell and its
-  /// six face-neighbours, the only cells whose status a change can alter.
+  /// six face-neighbours, the only cells whose status a change can alter. `changes` in key
+  /// order, as OccupancyMap::integrate returns them.
   void update(const map::OccupancyMap& map, const std::vector<map::Change>& changes);
 
   std::size_t size() const { return cells_.size(); }

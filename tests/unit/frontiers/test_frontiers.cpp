@@ -2,6 +2,7 @@
 // recomputation; clusters.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -55,6 +56,29 @@ TEST(Frontiers, FromScratchEqualsBruteForceAndIncrementalOnRandomMaps) {
       EXPECT_EQ(scratch.cells(map), oracle) << "seed " << seed << " scan " << s;
       EXPECT_EQ(incremental.cells(map), oracle) << "seed " << seed << " scan " << s;
     }
+  }
+}
+
+// Changes at keys 0 and 65535: their neighbours beyond the key space are no candidates (the
+// update merges the shifted change lists and must skip them as the definition does).
+TEST(Frontiers, IncrementalEqualsBruteForceAtTheEdgesOfTheKeySpace) {
+  std::mt19937 rng(7);
+  for (const float corner : {-3276.75f, 3276.75f}) {  // 0.1 m cells: keys 0 and 65535 there
+    map::OccupancyMap map(0.1);
+    FrontierSet incremental;
+    std::size_t edge_changes = 0;
+    for (int s = 0; s < 3; ++s) {
+      const Eigen::Vector3f origin = Eigen::Vector3f::Constant(corner - std::copysign(0.3f * float(s), corner));
+      const map::Integration change = map.integrate(random_scan(rng, origin, 300), origin, 1.0);
+      ASSERT_GT(change.points_out_of_map, 0u) << "the scan must reach past the edge";
+      for (const map::Change& c : change.changes)
+        for (const int v : {c.key.x, c.key.y, c.key.z}) edge_changes += v == 0 || v == 0xFFFF;
+      incremental.update(map, change.changes);
+      const auto oracle = brute_force(map);
+      ASSERT_FALSE(oracle.empty());
+      EXPECT_EQ(incremental.cells(map), oracle) << "corner " << corner << " scan " << s;
+    }
+    EXPECT_GT(edge_changes, 0u) << "corner " << corner << ": no change at the key space's edge";
   }
 }
 
