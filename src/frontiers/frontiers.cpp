@@ -9,7 +9,8 @@
 namespace fvx::frontiers {
 namespace {
 
-constexpr int kFaces[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+/// The cell itself, then its six face-neighbours.
+constexpr int kOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
 /// The neighbour of `k` one cell along (dx, dy, dz), or empty at the edge of the key space.
 std::optional<map::VoxelKey> neighbour(const map::VoxelKey& k, int dx, int dy, int dz) {
@@ -21,44 +22,77 @@ std::optional<map::VoxelKey> neighbour(const map::VoxelKey& k, int dx, int dy, i
 /// `read`: OccupancyMap::state or a map::StateReader.
 template <typename Read>
 bool has_unknown_face_neighbour(Read& read, const map::VoxelKey& key) {
-  for (const auto& d : kFaces) {
-    const auto n = neighbour(key, d[0], d[1], d[2]);
+  for (int s = 1; s < 7; ++s) {
+    const auto n = neighbour(key, kOffsets[s][0], kOffsets[s][1], kOffsets[s][2]);
     if (n && read(*n) == map::VoxelState::Unknown) return true;
   }
   return false;
+}
+
+/// A key as one number whose order is the key order (z, then y, then x).
+std::uint64_t code(const map::VoxelKey& k) { return std::uint64_t(k.z) << 32 | std::uint64_t(k.y) << 16 | k.x; }
+map::VoxelKey key_of(std::uint64_t c) {
+  return {std::uint16_t(c & 0xFFFF), std::uint16_t(c >> 16 & 0xFFFF), std::uint16_t(c >> 32)};
+}
+
+/// The code of the cell at kOffsets[s] from the cell coded `c`, or false at the edge of the
+/// key space. Adding a constant to every code of a key-ordered list keeps it in key order.
+inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
+  if (s == 0) return out = c, true;
+  const int shift = 16 * ((s - 1) / 2);  // x, x, y, y, z, z
+  const unsigned v = unsigned(c >> shift) & 0xFFFF;
+  const bool up = s % 2 == 1;
+  if (v == (up ? 0xFFFFu : 0u)) return false;
+  out = up ? c + (std::uint64_t(1) << shift) : c - (std::uint64_t(1) << shift);
+  return true;
 }
 
 /// The changed cells and their face neighbours, each once, in key order. The change set is
 /// in key order, and so is each of its shifts by one face offset, so their union is one merge
 /// of seven lists: sorting the 7·n keys instead took longer than integrating the scan itself
 /// on a first Kinect frame (269 000 changes; bench_integrate's step).
-std::vector<map::VoxelKey> changed_and_neighbours(const std::vector<map::Change>& changes) {
-  constexpr int kOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  constexpr std::uint64_t kEnd = ~std::uint64_t(0);
-  const auto code = [](const map::VoxelKey& k) {  // numeric order = key order (z, then y, then x)
-    return std::uint64_t(k.z) << 32 | std::uint64_t(k.y) << 16 | std::uint64_t(k.x);
-  };
+std::vector<std::uint64_t> changed_and_neighbours(const std::vector<std::uint64_t>& changed) {
+  constexpr std::uint64_t kEnd = ~std::uint64_t(0);  // above every code
   std::size_t at[7] = {};
   std::uint64_t head[7];
   const auto advance = [&](int s) {  // to the stream's next key inside the key space
-    for (; at[s] < changes.size(); ++at[s])
-      if (const auto n = neighbour(changes[at[s]].key, kOffsets[s][0], kOffsets[s][1], kOffsets[s][2])) {
-        head[s] = code(*n);
-        return;
-      }
+    for (; at[s] < changed.size(); ++at[s])
+      if (shifted(changed[at[s]], s, head[s])) return;
     head[s] = kEnd;
   };
   for (int s = 0; s < 7; ++s) advance(s);
-  std::vector<map::VoxelKey> out;
-  out.reserve(changes.size() * 3);
+  std::vector<std::uint64_t> out;
+  out.reserve(changed.size() * 3);
   for (std::uint64_t m = *std::min_element(head, head + 7); m != kEnd; m = *std::min_element(head, head + 7)) {
-    const map::VoxelKey k{std::uint16_t(m & 0xFFFF), std::uint16_t(m >> 16 & 0xFFFF), std::uint16_t(m >> 32)};
-    if (out.empty() || out.back() != k) out.push_back(k);
+    out.push_back(m);
     for (int s = 0; s < 7; ++s)
       if (head[s] == m) ++at[s], advance(s);
   }
   return out;
 }
+
+/// The map's state at the cells a key-ordered walk asks about: a changed cell's state is its
+/// change's `after` (no octree look-up), any other cell's is read from the map. Inside the
+/// volume a scan changed, a candidate and its neighbours are all changed cells, so most of
+/// the update reads no octree (on a first Kinect frame the reads were most of its time).
+class ChangedStates {
+ public:
+  ChangedStates(const std::vector<std::uint64_t>& changed, const std::vector<map::Change>& changes,
+                map::StateReader& read)
+      : changed_(changed), changes_(changes), read_(read) {}
+  /// The state at the cell coded `c`; codes asked in increasing order.
+  map::VoxelState operator()(std::uint64_t c) {
+    while (at_ < changed_.size() && changed_[at_] < c) ++at_;
+    if (at_ < changed_.size() && changed_[at_] == c) return changes_[at_].after;
+    return read_(key_of(c));
+  }
+
+ private:
+  const std::vector<std::uint64_t>& changed_;
+  const std::vector<map::Change>& changes_;
+  map::StateReader& read_;
+  std::size_t at_ = 0;
+};
 
 }  // namespace
 
@@ -114,19 +148,29 @@ void FrontierSet::rebuild(const map::OccupancyMap& map) {
 }
 
 void FrontierSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
-  const auto by_key = [](const map::Change& l, const map::Change& r) { return l.key < r.key; };
-  FVX_ASSERT(std::is_sorted(changes.begin(), changes.end(), by_key), "FrontierSet::update: changes not in key order");
-  const std::vector<map::VoxelKey> candidates = changed_and_neighbours(changes);
-  // In key order each look-up is near the one before it (StateReader). Then one merge: a
-  // candidate's new status replaces its old one, every other cell keeps its own.
+  std::vector<std::uint64_t> changed(changes.size());
+  for (std::size_t i = 0; i < changes.size(); ++i) changed[i] = code(changes[i].key);
+  FVX_ASSERT(std::is_sorted(changed.begin(), changed.end()), "FrontierSet::update: changes not in key order");
+  // The candidates in key order: so are the cells at one offset from each, which one
+  // ChangedStates per offset walks, and each octree look-up is near the one before it
+  // (StateReader). Then one merge: a candidate's new status replaces its old one, every
+  // other cell keeps its own.
   map::StateReader read(map);
+  std::vector<ChangedStates> state(7, ChangedStates(changed, changes, read));
   std::vector<map::VoxelKey> merged;
-  merged.reserve(cells_.size() + candidates.size() / 4);
+  merged.reserve(cells_.size() + changes.size() / 2);
   auto old = cells_.begin();
-  for (const map::VoxelKey& k : candidates) {
+  for (const std::uint64_t c : changed_and_neighbours(changed)) {
+    const map::VoxelKey k = key_of(c);
     for (; old != cells_.end() && *old < k; ++old) merged.push_back(*old);
     if (old != cells_.end() && *old == k) ++old;
-    if (read(k) == map::VoxelState::Free && has_unknown_face_neighbour(read, k)) merged.push_back(k);
+    if (state[0](c) != map::VoxelState::Free) continue;
+    std::uint64_t n;
+    for (int s = 1; s < 7; ++s)
+      if (shifted(c, s, n) && state[std::size_t(s)](n) == map::VoxelState::Unknown) {
+        merged.push_back(k);
+        break;
+      }
   }
   merged.insert(merged.end(), old, cells_.end());
   cells_ = std::move(merged);
