@@ -29,14 +29,12 @@ bool has_unknown_face_neighbour(Read& read, const map::VoxelKey& key) {
   return false;
 }
 
-/// A key as one number whose order is the key order (z, then y, then x).
-std::uint64_t code(const map::VoxelKey& k) { return std::uint64_t(k.z) << 32 | std::uint64_t(k.y) << 16 | k.x; }
-map::VoxelKey key_of(std::uint64_t c) {
-  return {std::uint16_t(c & 0xFFFF), std::uint16_t(c >> 16 & 0xFFFF), std::uint16_t(c >> 32)};
-}
+// Below, cells go as packed keys (map::pack: x | y << 16 | z << 32), whose numeric order is
+// the key order (z, then y, then x).
 
-/// The code of the cell at kOffsets[s] from the cell coded `c`, or false at the edge of the
-/// key space. Adding a constant to every code of a key-ordered list keeps it in key order.
+/// The packed key of the cell at kOffsets[s] from the cell packed as `c`, or false at the
+/// edge of the key space. Adding a constant to every key of a key-ordered list keeps it in
+/// key order.
 inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
   if (s == 0) return out = c, true;
   const int shift = 16 * ((s - 1) / 2);  // x, x, y, y, z, z
@@ -52,7 +50,7 @@ inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
 /// of seven lists: sorting the 7·n keys instead took longer than integrating the scan itself
 /// on a first Kinect frame (269 000 changes; bench_integrate's step).
 std::vector<std::uint64_t> changed_and_neighbours(const std::vector<std::uint64_t>& changed) {
-  constexpr std::uint64_t kEnd = ~std::uint64_t(0);  // above every code
+  constexpr std::uint64_t kEnd = ~std::uint64_t(0);  // above every packed key
   std::size_t at[7] = {};
   std::uint64_t head[7];
   const auto advance = [&](int s) {  // to the stream's next key inside the key space
@@ -80,11 +78,11 @@ class ChangedStates {
   ChangedStates(const std::vector<std::uint64_t>& changed, const std::vector<map::Change>& changes,
                 map::StateReader& read)
       : changed_(changed), changes_(changes), read_(read) {}
-  /// The state at the cell coded `c`; codes asked in increasing order.
+  /// The state at the cell packed as `c`; cells asked in key order.
   map::VoxelState operator()(std::uint64_t c) {
     while (at_ < changed_.size() && changed_[at_] < c) ++at_;
     if (at_ < changed_.size() && changed_[at_] == c) return changes_[at_].after;
-    return read_(key_of(c));
+    return read_(unpack(c));
   }
 
  private:
@@ -149,7 +147,7 @@ void FrontierSet::rebuild(const map::OccupancyMap& map) {
 
 void FrontierSet::update(const map::OccupancyMap& map, const std::vector<map::Change>& changes) {
   std::vector<std::uint64_t> changed(changes.size());
-  for (std::size_t i = 0; i < changes.size(); ++i) changed[i] = code(changes[i].key);
+  for (std::size_t i = 0; i < changes.size(); ++i) changed[i] = pack(changes[i].key);
   FVX_ASSERT(std::is_sorted(changed.begin(), changed.end()), "FrontierSet::update: changes not in key order");
   // The candidates in key order: so are the cells at one offset from each, which one
   // ChangedStates per offset walks, and each octree look-up is near the one before it
@@ -161,7 +159,7 @@ void FrontierSet::update(const map::OccupancyMap& map, const std::vector<map::Ch
   merged.reserve(cells_.size() + changes.size() / 2);
   auto old = cells_.begin();
   for (const std::uint64_t c : changed_and_neighbours(changed)) {
-    const map::VoxelKey k = key_of(c);
+    const map::VoxelKey k = unpack(c);
     for (; old != cells_.end() && *old < k; ++old) merged.push_back(*old);
     if (old != cells_.end() && *old == k) ++old;
     if (state[0](c) != map::VoxelState::Free) continue;
