@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "fvx/core/error.hpp"
 
@@ -30,6 +33,26 @@ Rgb blend(Rgb over, Rgb under, double alpha) {
 // Twice the signed area of (a, b, p): which side of a→b p lies on.
 double edge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
   return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
+}
+
+/// The parameters [t0, t1] ⊆ [0, 1] of the part of segment a→b inside the box [lo, hi]
+/// (Liang–Barsky), or none when it misses the box.
+std::optional<std::pair<double, double>> clip_to_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                                     const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  double t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector2d d = b - a;
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return std::nullopt;
+      continue;
+    }
+    double enter = (lo[k] - a[k]) / d[k], leave = (hi[k] - a[k]) / d[k];
+    if (enter > leave) std::swap(enter, leave);
+    t0 = std::max(t0, enter);
+    t1 = std::min(t1, leave);
+    if (t0 > t1) return std::nullopt;
+  }
+  return std::make_pair(t0, t1);
 }
 
 }  // namespace
@@ -202,11 +225,19 @@ void Canvas::line(const Eigen::Vector3d& a_m, const Eigen::Vector3d& b_m, Rgb co
   };
   const Eigen::Vector2d pa = pixel(a), pb = pixel(b);
   const double length = (pb - pa).norm();
-  if (!std::isfinite(length) || length > 1e5) return;
-  const int steps = std::max(1, int(std::ceil(length)));
-  const Rgb pale = blend(colour, {255, 255, 255}, 0.55);
+  if (!std::isfinite(length)) return;
+  // One sample per pixel of length, drawn only where the pen touches the image: a segment
+  // from just past the near plane runs far off the image, and its samples there are skipped
+  // without being visited (only its part on the image costs anything).
   const int lo = -(width_px - 1) / 2, hi = width_px / 2;
-  for (int s = 0; s <= steps; ++s) {
+  const double margin = width_px + 1.0;  // a sample this far off the image draws nothing on it
+  const auto on_image = clip_to_box(pa, pb, Eigen::Vector2d::Constant(-margin),
+                                    Eigen::Vector2d(image_.width + margin, image_.height + margin));
+  if (!on_image) return;
+  const double steps = std::max(1.0, std::ceil(length));
+  const Rgb pale = blend(colour, {255, 255, 255}, 0.55);
+  const auto first = std::int64_t(std::floor(on_image->first * steps)), last = std::int64_t(std::ceil(on_image->second * steps));
+  for (std::int64_t s = first; s <= last; ++s) {
     const double w = double(s) / steps;
     const Eigen::Vector2d p = pa + w * (pb - pa);
     const double depth = 1.0 / ((1 - w) / a.z() + w / b.z());

@@ -113,6 +113,27 @@ TEST(Render, LinesAreSolidInFrontAndDashedBehindSurfaces) {
   EXPECT_LT(dashes, 30u);
 }
 
+// A segment from just past the near plane projects millions of pixels off the image: its
+// part on the image is drawn (it used to be dropped whole), and the part off it costs
+// nothing (a segment 4·10¹⁰ px long is drawn at once).
+TEST(Render, LinesRunningFarOffTheImageAreClippedNotDropped) {
+  const io::Rgb blue = {30, 90, 230};
+  io::Canvas canvas(along_x());
+  canvas.line({0.011, -10, 0}, {2, 0, 0}, blue);  // from u ≈ 182 000 px to the centre, row 150
+  EXPECT_EQ(canvas.image().at(200, 150), blue);
+  EXPECT_EQ(canvas.image().at(399, 150), blue);
+  EXPECT_TRUE(is_white(canvas.image().at(198, 150)));  // it ends at the centre
+  io::Canvas across(along_x());
+  across.line({0.0100001, 1000, -0.0000005}, {0.0100001, -1000, -0.0000005}, blue);  // row 150, far beyond both sides
+  std::size_t row = 0;
+  for (int x = 0; x < 400; ++x) row += across.image().at(x, 150) == blue;
+  EXPECT_EQ(row, 400u);
+  EXPECT_EQ(pixels_of(across.image(), blue), 400u);
+  io::Canvas off(along_x());
+  off.line({0.011, -10, 10}, {0.011, 10, 10}, blue);  // far above the image
+  EXPECT_EQ(pixels_of(off.image(), blue), 0u);
+}
+
 TEST(Render, ACubeUnderAPixelIsOnePixelAndASmallOneASquare) {
   io::Canvas canvas(along_x());
   canvas.cells({Eigen::Vector3d(20, 0, 0)}, 0.05, {0, 200, 0});  // 0.5 px wide
