@@ -225,7 +225,7 @@ void Canvas::line(const Eigen::Vector3d& a_m, const Eigen::Vector3d& b_m, Rgb co
   };
   const Eigen::Vector2d pa = pixel(a), pb = pixel(b);
   const double length = (pb - pa).norm();
-  if (!std::isfinite(length)) return;
+  if (!(length < 1e15)) return;  // not finite, or beyond what a sample index holds exactly
   // One sample per pixel of length, drawn only where the pen touches the image: a segment
   // from just past the near plane runs far off the image, and its samples there are skipped
   // without being visited (only its part on the image costs anything).
