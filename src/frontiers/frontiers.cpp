@@ -9,31 +9,11 @@
 namespace fvx::frontiers {
 namespace {
 
-/// The cell itself, then its six face-neighbours.
-constexpr int kOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-
-/// The neighbour of `k` one cell along (dx, dy, dz), or empty at the edge of the key space.
-std::optional<map::VoxelKey> neighbour(const map::VoxelKey& k, int dx, int dy, int dz) {
-  const int x = k.x + dx, y = k.y + dy, z = k.z + dz;
-  if (x < 0 || y < 0 || z < 0 || x > 0xFFFF || y > 0xFFFF || z > 0xFFFF) return std::nullopt;
-  return map::VoxelKey{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
-}
-
-/// `read`: OccupancyMap::state or a map::StateReader.
-template <typename Read>
-bool has_unknown_face_neighbour(Read& read, const map::VoxelKey& key) {
-  for (int s = 1; s < 7; ++s) {
-    const auto n = neighbour(key, kOffsets[s][0], kOffsets[s][1], kOffsets[s][2]);
-    if (n && read(*n) == map::VoxelState::Unknown) return true;
-  }
-  return false;
-}
-
 // Below, cells go as packed keys (map::pack: x | y << 16 | z << 32), whose numeric order is
 // the key order (z, then y, then x).
 
-/// The packed key of the cell at kOffsets[s] from the cell packed as `c`, or false at the
-/// edge of the key space. Adding a constant to every key of a key-ordered list keeps it in
+/// The packed key of offset s of the cell packed as `c` (s = 0: the cell itself; 1-6: its
+/// face-neighbours at +x, -x, +y, -y, +z, -z), or false at the edge of the key space. Adding a constant to every key of a key-ordered list keeps it in
 /// key order.
 inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
   if (s == 0) return out = c, true;
@@ -43,6 +23,15 @@ inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
   if (v == (up ? 0xFFFFu : 0u)) return false;
   out = up ? c + (std::uint64_t(1) << shift) : c - (std::uint64_t(1) << shift);
   return true;
+}
+
+/// `read`: OccupancyMap::state or a map::StateReader.
+template <typename Read>
+bool has_unknown_face_neighbour(Read& read, const map::VoxelKey& key) {
+  std::uint64_t n;
+  for (int s = 1; s < 7; ++s)
+    if (shifted(pack(key), s, n) && read(unpack(n)) == map::VoxelState::Unknown) return true;
+  return false;
 }
 
 /// The changed cells and their face neighbours, each once, in key order. The change set is
