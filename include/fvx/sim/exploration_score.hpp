@@ -52,6 +52,8 @@ class ExplorationScore {
                                 double resolution_m, unsigned threads = 0);
 
   std::size_t observable_cells() const { return observable_.size(); }
+  /// The observable cells' centres (world frame), in the order the constructor found them.
+  const std::vector<Eigen::Vector3d>& observable_centres_m() const { return observable_; }
   /// Observable cells inside the hull of the scene's surfaces in S (see the constructor).
   std::size_t observable_void_cells() const;
   /// After restrict_to_views: the target's surface cells (in its box above its lowest cell)

@@ -4,9 +4,11 @@
 // ground truth tells which predicted void cells and which free map cells lie inside material.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 #include <tuple>
 
+#include "fvx/map/dense_grid.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/sim/depth_sensor.hpp"
 #include "fvx/sim/exploration_score.hpp"
@@ -172,6 +174,74 @@ TEST(ExplorationScore, ViewsKeepWhatTheyReveal) {
   inside.linear() = viewpoints::look_along(Eigen::Vector3d(0.85, -0.05, 0.06) - inside.translation(), 0.0);
   victim.restrict_to_views(c.gt, {inside}, rays, 0.05, 4.0);
   EXPECT_GT(*victim.observable_target_cells(), 0u);
+}
+
+// restrict_to_views walks only the rays that can reach the search space or the target. Oracle:
+// every ray of every pose walked on the ground truth's grid to its first solid cell (the
+// class's rule, written out), from poses all around the crates, most looking away from them.
+TEST(ExplorationScore, RestrictingToViewsKeepsWhatWalkingEveryRayKeeps) {
+  const Crates c;
+  const ExplorationScore all(c.gt, c.S, c.scene.info.target->box);
+  ExplorationScore restricted = all;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double R = c.gt.resolution_m();
+  const Eigen::Vector3d lo = c.gt.center_of(c.gt.first_cell()) - Eigen::Vector3d::Constant(R / 2);
+  const Eigen::AlignedBox3d region(lo, lo + c.gt.size().cast<double>() * R);
+  std::vector<Eigen::Isometry3d> poses;
+  while (poses.size() < 300) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    for (int a = 0; a < 3; ++a)
+      T.translation()[a] = region.min()[a] + unit(rng) * (region.max()[a] - region.min()[a]);
+    const Eigen::Vector3i cell = c.gt.cell_of(T.translation());
+    if (!c.gt.contains(cell) || c.gt.solid(cell)) continue;
+    const Eigen::Vector3d d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+    if (d.norm() < 1e-3) continue;
+    T.linear() = viewpoints::look_along(d, 2 * M_PI * unit(rng));
+    poses.push_back(T);
+  }
+  // And the pose in the victim's crate that sees it (ViewsKeepWhatTheyReveal).
+  Eigen::Isometry3d inside = Eigen::Isometry3d::Identity();
+  inside.translation() = Eigen::Vector3d(0.66, -0.05, 0.22);
+  inside.linear() = viewpoints::look_along(Eigen::Vector3d(0.85, -0.05, 0.06) - inside.translation(), 0.0);
+  poses.push_back(inside);
+  const auto rays = viewpoints::ray_fan(io::Intrinsics{}, 20, 15);
+  const double depth_min_m = 0.05, depth_max_m = 4.0;
+  restricted.restrict_to_views(c.gt, poses, rays, depth_min_m, depth_max_m, 2);
+
+  const map::OccupancyMap truth = c.gt.to_map();
+  const map::DenseGrid grid(truth, region);
+  std::vector<std::uint8_t> revealed(grid.cell_count(), 0);
+  std::size_t walked = 0;
+  for (const Eigen::Isometry3d& T : poses)
+    for (const Eigen::Vector3d& ray : rays) {
+      std::vector<std::size_t> crossed;
+      std::optional<std::size_t> hit;
+      grid.walk(T.translation(), T.linear() * ray, depth_max_m * ray.norm(), [&](std::size_t i, map::VoxelState s) {
+        if (s == map::VoxelState::Occupied) hit = i;
+        else crossed.push_back(i);
+        return !hit;
+      });
+      if (!hit) continue;
+      const double depth = (grid.center_of(grid.key(*hit)) - T.translation()).dot(T.linear().col(2));
+      if (depth < depth_min_m || depth > depth_max_m) continue;
+      ++walked;
+      for (const std::size_t i : crossed) revealed[i] |= 1;
+      revealed[*hit] |= 2;
+    }
+  ASSERT_GT(walked, 1000u);
+  std::vector<Eigen::Vector3d> expected;
+  for (const Eigen::Vector3d& p : all.observable_centres_m())
+    if (revealed[grid.index(*truth.key_of(p))] & 1) expected.push_back(p);
+  ASSERT_GT(expected.size(), 100u);
+  EXPECT_EQ(restricted.observable_centres_m(), expected);
+  Eigen::AlignedBox3d above_floor = c.scene.info.target->box;
+  above_floor.min().z() += R;
+  std::size_t target_cells = 0;
+  for (std::size_t i = 0; i < grid.cell_count(); ++i)
+    target_cells += (revealed[i] & 2) && above_floor.contains(grid.center_of(grid.key(i)));
+  ASSERT_GT(target_cells, 0u);
+  EXPECT_EQ(*restricted.observable_target_cells(), target_cells);
 }
 
 TEST(GroundTruth, CountsPredictionsAndFreeCellsInsideSolids) {
