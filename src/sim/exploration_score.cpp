@@ -35,6 +35,23 @@ voids::Hull hull_of_surfaces(const GroundTruth& gt, const Eigen::AlignedBox3d& S
   return voids::convex_hull(extremes);
 }
 
+/// The grid's states with bit 2 set on the cells of `centres_m`, in `cells`; returns the box
+/// of those cells and of `target_m`, one cell wider on every side.
+Eigen::AlignedBox3d flag_cells(const map::OccupancyMap& truth, const map::DenseGrid& grid,
+                               const std::vector<Eigen::Vector3d>& centres_m,
+                               const std::optional<Eigen::AlignedBox3d>& target_m, std::vector<std::uint8_t>& cells) {
+  Eigen::AlignedBox3d box_m;
+  cells.assign(grid.states(), grid.states() + grid.cell_count());
+  for (const Eigen::Vector3d& p : centres_m) {
+    box_m.extend(p);
+    if (const auto key = truth.key_of(p); key && grid.contains(*key)) cells[grid.index(*key)] |= 4;
+  }
+  if (target_m) box_m.extend(*target_m);
+  box_m.min().array() -= grid.resolution_m();
+  box_m.max().array() += grid.resolution_m();
+  return box_m;
+}
+
 }  // namespace
 
 ExplorationScore::ExplorationScore(const GroundTruth& gt, const Eigen::AlignedBox3d& search_space_m,
@@ -95,15 +112,8 @@ void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vecto
   // of their cubes cannot change the result and is not walked (on the suite's scenes three
   // rays in four of the arm's poses look past the search space); a walked ray keeps only the
   // observable cells it crosses, flagged beside the state (bit 2) so that a cell is one load.
-  Eigen::AlignedBox3d read_box_m;
-  std::vector<std::uint8_t> cells(grid.states(), grid.states() + grid.cell_count());
-  for (const Eigen::Vector3d& p : observable_) {
-    read_box_m.extend(p);
-    if (const auto key = truth.key_of(p); key && grid.contains(*key)) cells[grid.index(*key)] |= 4;
-  }
-  if (target_m_) read_box_m.extend(*target_m_);
-  read_box_m.min().array() -= R;
-  read_box_m.max().array() += R;
+  std::vector<std::uint8_t> cells;
+  const Eigen::AlignedBox3d read_box_m = flag_cells(truth, grid, observable_, target_m_, cells);
   std::atomic<std::size_t> next{0};
   auto work = [&](unsigned t) {
     std::vector<std::size_t> crossed;
