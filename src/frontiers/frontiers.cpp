@@ -13,8 +13,8 @@ namespace {
 // the key order (z, then y, then x).
 
 /// The packed key of offset s of the cell packed as `c` (s = 0: the cell itself; 1-6: its
-/// face-neighbours at +x, -x, +y, -y, +z, -z), or false at the edge of the key space. Adding a constant to every key of a key-ordered list keeps it in
-/// key order.
+/// face-neighbours at +x, -x, +y, -y, +z, -z), or false at the edge of the key space. Adding
+/// a constant to every key of a key-ordered list keeps it in key order.
 inline bool shifted(std::uint64_t c, int s, std::uint64_t& out) {
   if (s == 0) return out = c, true;
   const int shift = 16 * ((s - 1) / 2);  // x, x, y, y, z, z
