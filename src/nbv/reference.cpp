@@ -94,7 +94,9 @@ Result select_exhaustive(Search& s, Result result) {
   result.timing.pruning_s = t0.seconds();
 
   t0 = Stopwatch();
-  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result);
+  // Screened as the frontier-void strategy is (coarse fan, the best again with the full
+  // fan in rank()), so that the two differ in which poses they score, not in how.
+  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_rays());
   pruning.seeing_nothing += pruning.culled;
   result.timing.scoring_s = t0.seconds();
   // IK only for the poses that make the ranking (it would cost seconds for all of them).

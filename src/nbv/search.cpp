@@ -95,7 +95,8 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads,
                                                   float(std::floor(clearance_cells_sq) + 1.0));
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
-  if (config.strategy == Strategy::FrontierVoid && config.coarse_ray_cols > 0 &&
+  const bool screens = config.strategy == Strategy::FrontierVoid || config.strategy == Strategy::Exhaustive;
+  if (screens && config.coarse_ray_cols > 0 &&
       std::size_t(config.coarse_ray_cols) * std::size_t(config.coarse_ray_rows) < rays_sensor.size())
     rays_coarse = viewpoints::ray_fan(config.sensor.intrinsics, config.coarse_ray_cols, config.coarse_ray_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
@@ -332,7 +333,11 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
   });
   std::vector<std::size_t> kept(described.size());  // into `described`, best first
   std::iota(kept.begin(), kept.end(), std::size_t(0));
-  if (screened) {  // the full fan's U decides; ties keep the coarse order
+  // Where `score` is a count of void cells, the full fan's U of the pose as accepted decides;
+  // ties keep the score order. Screened, `score` was the coarse fan's; unscreened it can
+  // still differ, since `accept` may move a pose (IK snaps it to one the capability map
+  // holds: the exhaustive strategy). The frontier strategy's score counts frontier cells.
+  if (config.strategy != Strategy::Frontier) {
     std::stable_sort(kept.begin(), kept.end(), [&](std::size_t l, std::size_t r) {
       return described[l].void_cells_seen > described[r].void_cells_seen;
     });

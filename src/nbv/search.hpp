@@ -71,10 +71,11 @@ struct Search {
   std::vector<std::size_t> score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
                                  Result& result, const std::vector<Eigen::Vector3d>* rays = nullptr) const;
   /// Ranks by `score` (descending; ties: generation order), drops zeros and poses `accept`
-  /// refuses (when given; it may fill the joints), keeps config.top and describes each view
-  /// (U with the full fan, void cells seen per cluster, contributors, joints). Screened
-  /// (screen_rays(): `score` came from the coarse fan), a few more than config.top views are
-  /// described and the full fan's U ranks them.
+  /// refuses (when given; it may fill the joints or move the pose), keeps config.top and
+  /// describes each view (U with the full fan, void cells seen per cluster, contributors,
+  /// joints); the described U ranks the views (frontier strategy: `score`). Screened
+  /// (screen_rays(): `score` came from the coarse fan), a few more than config.top views
+  /// are described.
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;

@@ -50,8 +50,8 @@ struct Config {
   int ray_cols = 80;                  ///< field-of-view rays across the image (decimated pixel grid)
   int ray_rows = 60;                  ///< … and down it
   /// Screening (not in the paper): the frontier-void strategy scores its sampled, stepped-
-  /// back and rolled poses with this coarser fan, then scores the best of them with the full
-  /// fan (ray_cols × ray_rows) to rank the views it reports. 0 × 0: every pose with the
+  /// back and rolled poses (exhaustive: every pose) with this coarser fan, then scores the
+  /// best of them with the full fan (ray_cols × ray_rows) to rank the views it reports. 0 × 0: every pose with the
   /// full fan. A view's U counts what its rays cross, so a quarter of the rays counts fewer
   /// cells, yet ranks poses alike (README, "Screening").
   int coarse_ray_cols = 40;
