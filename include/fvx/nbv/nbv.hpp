@@ -51,9 +51,9 @@ struct Config {
   int ray_rows = 60;                  ///< … and down it
   /// Screening (not in the paper): the frontier-void strategy scores its sampled, stepped-
   /// back and rolled poses (exhaustive: every pose) with this coarser fan, then scores the
-  /// best of them with the full fan (ray_cols × ray_rows) to rank the views it reports. 0 × 0: every pose with the
-  /// full fan. A view's U counts what its rays cross, so a quarter of the rays counts fewer
-  /// cells, yet ranks poses alike (README, "Screening").
+  /// best of them with the full fan (ray_cols × ray_rows) to rank the views it reports.
+  /// 0 × 0: every pose with the full fan. A view's U counts what its rays cross, so a
+  /// quarter of the rays counts fewer cells, yet ranks poses alike (README, "Screening").
   int coarse_ray_cols = 40;
   int coarse_ray_rows = 30;
   int valid_poses = 50;               ///< N: the search stops after this many valid poses (paper: 50)
