@@ -42,6 +42,44 @@ bool meets_cone(const Sphere& sphere, const Eigen::Vector3d& apex, const Eigen::
   return angle - std::asin(sphere.radius / distance) <= half_angle;
 }
 
+/// The exhaustive strategy's pre-screen: below this many poses it scores them all with the
+/// coarse fan; above it it keeps a quarter of those its fan sees anything from, at least this
+/// many. Measured on 72 maps of the suite's exhaustive runs (views 1, 5 and 10 of its 24
+/// scenes): a quarter kept the same ten views on every map at half the search time; an
+/// eighth lowered the best U on one map (to 95 %).
+constexpr std::size_t kPrescreenMinPoses = 1024;
+constexpr std::size_t kPrescreenShare = 4;
+
+/// U of every pose with the coarse fan (screen_rays()), or 0 where the pre-screen left the
+/// pose out. The exhaustive strategy scores every pose the capability map holds (18 000 to
+/// 22 000 on the suite's scenes), and the coarse fan's cast of them all was three quarters of
+/// the default suite's time. A fan half as fine each way (a quarter of the rays) scores them
+/// all first; the best share by its count is scored with the coarse fan, as the frontier-void
+/// strategy's poses are.
+std::vector<std::size_t> screen_exhaustive(const Search& s, const std::vector<Pose>& poses, Result& result) {
+  const std::vector<Eigen::Vector3d>* pre_rays = s.prescreen_rays();
+  if (!pre_rays || poses.size() < kPrescreenMinPoses)
+    return s.score(*s.void_scorer, poses, result, s.screen_rays());
+  const std::vector<std::size_t> pre = s.score(*s.void_scorer, poses, result, pre_rays);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (pre[i] > 0) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return pre[l] > pre[r]; });
+  order.resize(std::min(order.size(), std::max(kPrescreenMinPoses, order.size() / kPrescreenShare)));
+  std::sort(order.begin(), order.end());  // generation order: ties rank as without the pre-screen
+  std::vector<Pose> kept;
+  kept.reserve(order.size());
+  for (const std::size_t i : order) kept.push_back(poses[i]);
+  // The poses were counted (scored, seeing nothing) by the pre-screen: not again.
+  const std::size_t scored = result.poses_scored, seeing_nothing = result.pruning.seeing_nothing;
+  const std::vector<std::size_t> U_kept = s.score(*s.void_scorer, kept, result, s.screen_rays());
+  result.poses_scored = scored;
+  result.pruning.seeing_nothing = seeing_nothing;
+  std::vector<std::size_t> U(poses.size(), 0);
+  for (std::size_t k = 0; k < order.size(); ++k) U[order[k]] = U_kept[k];
+  return U;
+}
+
 }  // namespace
 
 Result select_exhaustive(Search& s, Result result) {
@@ -96,7 +134,7 @@ Result select_exhaustive(Search& s, Result result) {
   t0 = Stopwatch();
   // Screened as the frontier-void strategy is (coarse fan, the best again with the full
   // fan in rank()), so that the two differ in which poses they score, not in how.
-  const std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_rays());
+  const std::vector<std::size_t> U = screen_exhaustive(s, poses, result);
   pruning.seeing_nothing += pruning.culled;
   result.timing.scoring_s = t0.seconds();
   // IK only for the poses that make the ranking (it would cost seconds for all of them).

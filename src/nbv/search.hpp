@@ -94,6 +94,11 @@ struct Search {
   /// The coarse fan that screens the frontier-void strategy's poses (Config::coarse_ray_cols),
   /// or null: every pose with the full fan.
   const std::vector<Eigen::Vector3d>* screen_rays() const { return rays_coarse.empty() ? nullptr : &rays_coarse; }
+  /// Exhaustive strategy, screened: a fan half as fine as the coarse one each way, which
+  /// picks the poses the coarse fan scores (reference.cpp); null: none.
+  const std::vector<Eigen::Vector3d>* prescreen_rays() const {
+    return rays_prescreen.empty() ? nullptr : &rays_prescreen;
+  }
 
   /// Scoring's per-thread scratch (a bit per grid cell), kept across score() and rank()
   /// calls: a fresh one costs the kernel zeroed pages. Each score() leaves its bits clear.
@@ -126,6 +131,7 @@ struct Search {
   core::LargeVector<float> occupied_distance_sq;
   std::vector<Eigen::Vector3d> rays_sensor;
   std::vector<Eigen::Vector3d> rays_coarse;  ///< screen_rays(); empty: off
+  std::vector<Eigen::Vector3d> rays_prescreen;  ///< prescreen_rays(); empty: none
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;
   /// Strategy Frontier: the largest frontier cluster (ties: the lower id), and per cell of it
