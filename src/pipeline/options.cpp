@@ -192,9 +192,11 @@ std::vector<OptionSpec> accumulation_options(const std::string& echo) {
           {"utility-vectors", 0, "N", "sampled: trace about N utility vectors at most; under it the field is exact",
            echo + "/max_utility_vectors", dflt(nbv::Config{}.max_utility_vectors),
            in(7, double(std::numeric_limits<long long>::max()))},
-          {"coarse-rays", 0, "COLSxROWS", "frontier-void: screen the poses with this coarser fan of "
-                                          "field-of-view rays, then rank the best with the full fan (--rays); "
-                                          "off: every pose with the full fan", echo + "/coarse_rays",
+          {"coarse-rays", 0, "COLSxROWS", "frontier-void and exhaustive: screen the poses with this coarser "
+                                          "fan of field-of-view rays (exhaustive, above 1024 poses: the best "
+                                          "quarter by a fan half as fine each way), then rank the best with "
+                                          "the full fan (--rays); off: every pose with the full fan",
+           echo + "/coarse_rays",
            dflt(nbv::Config{}.coarse_ray_cols) + "x" + dflt(nbv::Config{}.coarse_ray_rows)}};
 }
 
