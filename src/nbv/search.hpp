@@ -91,8 +91,8 @@ struct Search {
   /// progress reported as `stage` when given.
   void parallel(std::size_t n, const std::function<void(std::size_t, viewpoints::FovScorer::Workspace&)>& fn,
                 const char* stage = nullptr) const;
-  /// The coarse fan that screens the frontier-void strategy's poses (Config::coarse_ray_cols),
-  /// or null: every pose with the full fan.
+  /// The coarse fan that screens the frontier-void and exhaustive strategies' poses
+  /// (Config::coarse_ray_cols), or null: every pose with the full fan.
   const std::vector<Eigen::Vector3d>* screen_rays() const { return rays_coarse.empty() ? nullptr : &rays_coarse; }
   /// Exhaustive strategy, screened: a fan half as fine as the coarse one each way, which
   /// picks the poses the coarse fan scores (reference.cpp); null: none.

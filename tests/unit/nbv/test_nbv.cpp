@@ -400,10 +400,10 @@ TEST(Nbv, ScreenedPosesAreRankedByTheFullFanAndKeepTheBestView) {
 // The exhaustive strategy is screened as frontier-void is: reachable poses with the coarse
 // fan (above 1 024 poses the best quarter by a fan half as fine), the best again with the full
 // one. Here with 40 x 30 rays screened by 20 x 15 and 10 x 7 (the default's ratios; one roll)
-// to keep the unscreened reference short: the
-// reported views carry the full fan's U, and the best sees at least 95 % of what the
-// unscreened best view sees, on the closed box and on paper-setting-2, where the optimum looks
-// through holes (both saw the same best U when written, as did paper-setting-1).
+// to keep the unscreened reference short: the reported views carry the full fan's U, and the
+// best sees at least 95 % of what the unscreened best view sees, on the closed box and on
+// paper-setting-2, where the optimum looks through holes (both saw the same best U when
+// written, as did paper-setting-1).
 TEST(Nbv, TheScreenedExhaustiveStrategyKeepsTheBestView) {
   const Arm arm;
   Config base = coarse();
