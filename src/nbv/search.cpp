@@ -99,9 +99,10 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   if (screens && config.coarse_ray_cols > 0 &&
       std::size_t(config.coarse_ray_cols) * std::size_t(config.coarse_ray_rows) < rays_sensor.size())
     rays_coarse = viewpoints::ray_fan(config.sensor.intrinsics, config.coarse_ray_cols, config.coarse_ray_rows);
-  if (config.strategy == Strategy::Exhaustive && !rays_coarse.empty())
-    rays_prescreen = viewpoints::ray_fan(config.sensor.intrinsics, std::max(1, config.coarse_ray_cols / 2),
-                                         std::max(1, config.coarse_ray_rows / 2));
+  const int pre_cols = std::max(1, config.coarse_ray_cols / 2), pre_rows = std::max(1, config.coarse_ray_rows / 2);
+  // Only a fan with fewer rays than the coarse one saves work (a 1 x N coarse fan has none).
+  if (config.strategy == Strategy::Exhaustive && std::size_t(pre_cols) * std::size_t(pre_rows) < rays_coarse.size())
+    rays_prescreen = viewpoints::ray_fan(config.sensor.intrinsics, pre_cols, pre_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
