@@ -68,7 +68,7 @@ const CommandSpec kExploreSpec = {
 
 namespace {
 
-const std::vector<std::string> kColumns = {"view",           "integration_s", "search_s",       "void_cells",
+const std::vector<std::string> kExploreColumns = {"view",           "integration_s", "search_s",       "void_cells",
                                            "utility_dm3",    "map_void_cells", "void_known_pct", "known_pct",
                                            "target_seen",    "revealed",      "u_in_solid"};
 
@@ -88,6 +88,7 @@ session::ExploreConfig parse_config(const Args& args) {
   pc.target_size_m = parse_target_size(args, 0.0);
   pc.hull_in_bounds = parse_void_hull(args, false);
   args.read("unknown-depth", nc.unknown_depth_cells);
+  nc.near_unknown = pipeline::parse_near_unknown(args, nc.near_unknown);
   if (args.has("no-return")) {
     const std::string mode = args.get("no-return");
     if (mode != "none" && mode != "free") throw UsageError("--no-return '" + mode + "': expected none or free");
@@ -221,7 +222,7 @@ int run_explore(const Args& args) {
     write_report(
         run_report(args, config, render_config, scene.info_path, arm_inputs, dir.string(), result, score, rows), "");
   } else {
-    print_rows(rows, kColumns, format, std::cout);
+    print_rows(rows, kExploreColumns, format, std::cout);
     if (format == Format::markdown) std::cout << "\n" << result.end << " after " << result.views << " views.\n";
   }
   if (score.observable_target_cells() && *score.observable_target_cells() < sim::ExplorationScore::kTargetCellsSeen)

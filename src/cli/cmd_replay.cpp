@@ -75,7 +75,7 @@ const CommandSpec kReplaySpec = {
 
 namespace {
 
-const std::vector<std::string> kColumns = {"view",      "integration_s", "search_s", "void_cells",
+const std::vector<std::string> kReplayColumns = {"view",      "integration_s", "search_s", "void_cells",
                                            "utility_dm3", "fitness_m",  "next_m",   "next_deg",
                                            "revealed",  "map_void_cells", "known_dm3"};
 
@@ -184,6 +184,7 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   pc.hull_in_bounds = parse_void_hull(args, pc.hull_in_bounds);
   if (args.has("discretize")) pc.discretize = true;  // a session's recorded choice otherwise
   args.read("unknown-depth", nc.unknown_depth_cells);
+  nc.near_unknown = pipeline::parse_near_unknown(args, nc.near_unknown);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   args.read("seed", nc.seed);
@@ -275,7 +276,7 @@ int run_replay(const Args& args) {
     report["warnings"] = Json::array();
     write_report(report, "");
   } else {
-    print_rows(shown, kColumns, format, std::cout);
+    print_rows(shown, kReplayColumns, format, std::cout);
   }
   if (!failure.empty()) throw Error("fvx replay: " + failure + (shown.empty() ? "; nothing was written" : "; the " +
                                     std::to_string(shown.size()) + " views before it are in " + dir.string()));

@@ -108,6 +108,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
                                                         config.sensor.depth_min_m, config.count_near_void_cells);
   void_scorer->set_unknown_depth(config.unknown_depth_cells);
+  void_scorer->set_near_unknown(config.near_unknown);
   if (config.strategy == Strategy::Frontier) {
     for (const auto& c : a.frontier_clusters)
       if (!frontier_target || c.cells.size() > frontier_target->cells.size()) frontier_target = &c;

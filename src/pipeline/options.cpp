@@ -124,6 +124,7 @@ nbv::Config read_search_options(const Args& args) {
   args.read("climb", config.climb_rounds);
   args.read("rolls", config.exhaustive_rolls);
   config.count_near_void_cells = parse_near_voids(args, true);
+  config.near_unknown = parse_near_unknown(args, config.near_unknown);
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   args.read("seed", config.seed);
   args.read("threads", config.threads);
@@ -140,7 +141,8 @@ std::vector<OptionSpec> near_voids_options(const std::string& echo) {
   return {{"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells from its minimum "
                                          "depth on, Algorithm 1 adds utility from that distance beyond the "
                                          "frontier (default: every void cell a ray crosses, utility from the "
-                                         "frontier on)", echo + "/count_near_void_cells"},
+                                         "frontier on)",
+           echo + "/count_near_void_cells"},
           {"near-voids", 0, nullptr, "every void cell a ray crosses counts (the default; kept for scripts)",
            echo + "/count_near_void_cells"}};
 }
@@ -162,7 +164,16 @@ std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, con
   return {void_hull_option(pipeline_echo + "/hull_in_bounds"),
           {"unknown-depth", 0, "N", "U counts only the first N unknown cells of each ray, those a view reveals for "
                                     "sure (default 0: every void cell a ray crosses, the paper's)",
-           nbv_echo + "/unknown_depth_cells", dflt(0), in(0, 1000)}};
+           nbv_echo + "/unknown_depth_cells", dflt(0), in(0, 1000)},
+          {"near-unknown", 0, "MODE", "what an unknown cell nearer than the sensor's minimum depth does to a ray of "
+                                      "U: ignore (the default: nothing), void (a void cell there leaves the ray "
+                                      "counting nothing, as a surface hidden in it leaves the pixel without depth) "
+                                      "or any (any unknown cell there)", nbv_echo + "/near_unknown"}};
+}
+
+viewpoints::NearUnknown parse_near_unknown(const Args& args, viewpoints::NearUnknown fallback) {
+  return args.has("near-unknown") ? viewpoints::parse_near_unknown(args.get("near-unknown"), "--near-unknown")
+                                  : fallback;
 }
 
 bool parse_void_hull(const Args& args, bool fallback) {

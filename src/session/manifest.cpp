@@ -106,6 +106,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["target_size_m"] = m.target_size_m;
   j["hull_in_bounds"] = m.hull_in_bounds;
   j["unknown_depth_cells"] = m.unknown_depth_cells;
+  j["near_unknown"] = m.near_unknown;
   j["clear_beyond_range"] = m.clear_beyond_range;
   j["discretize"] = m.discretize;
   j["accumulation"] = m.accumulation;
@@ -141,6 +142,11 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
   }
   if (j.contains("unknown_depth_cells")) m.unknown_depth_cells = int(r.integer(j, "unknown_depth_cells", 0, 1000));
+  if (j.contains("near_unknown")) {
+    m.near_unknown = r.text(j, "near_unknown");
+    if (m.near_unknown != "ignore" && m.near_unknown != "void" && m.near_unknown != "any")
+      r.fail("'near_unknown' must be ignore, void or any");
+  }
   if (j.contains("accumulation")) {
     m.accumulation = r.text(j, "accumulation");
     if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");
@@ -275,6 +281,7 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.target_size_m = pc.target_size_m;
   m.hull_in_bounds = pc.hull_in_bounds;
   m.unknown_depth_cells = nc.unknown_depth_cells;
+  m.near_unknown = viewpoints::to_string(nc.near_unknown);
   m.clear_beyond_range = pc.clear_beyond_range;
   m.discretize = pc.discretize;
   m.accumulation = utility::to_string(nc.accumulation);

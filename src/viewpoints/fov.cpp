@@ -8,6 +8,16 @@
 
 namespace fvx::viewpoints {
 
+const char* to_string(NearUnknown mode) {
+  return mode == NearUnknown::Ignore ? "ignore" : mode == NearUnknown::Void ? "void" : "any";
+}
+
+NearUnknown parse_near_unknown(const std::string& name, const std::string& what) {
+  for (const NearUnknown m : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any})
+    if (name == to_string(m)) return m;
+  throw UsageError(what + " '" + name + "': expected ignore, void or any");
+}
+
 std::vector<Eigen::Vector3d> ray_fan(const io::Intrinsics& K, int cols, int rows) {
   FVX_ASSERT(cols > 0 && rows > 0 && K.validate().empty(), "ray_fan: bad grid or intrinsics");
   std::vector<Eigen::Vector3d> rays;
@@ -42,7 +52,8 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
       rays_sensor_(std::move(rays_sensor)),
       depth_max_m_(depth_max_m),
       depth_min_m_(depth_min_m),
-      count_from_m_(near_targets_count ? 0.0 : depth_min_m) {
+      count_from_m_(near_targets_count ? 0.0 : depth_min_m),
+      diagonal_m_(std::sqrt(3.0) * grid.resolution_m()) {
   FVX_ASSERT(cells_.size() == grid_.cell_count(), "FovScorer: one target flag per grid cell");
   const std::uint8_t* states = grid_.states();
   // The targets' extent in cells, by the loop's own coordinates: key(i) divides, and real
@@ -109,8 +120,20 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     const double range_m = std::max(exit_m, std::min(depth_min_m_, depth_max_m_) * length);
     std::size_t hit = std::size_t(-1);
     int unknown = 0;
+    // An unknown cell nearer than the minimum depth (its centre's) may hide the ray's end
+    // (NearUnknown). Centres' depths along a ray fall back by up to a cell's diagonal, so the
+    // check ends at the first such cell whose centre lies that far beyond the minimum depth.
+    // Like the occupied-cell rule below, it sees the cells the walk enters before it stops.
+    const std::uint8_t blocking = near_unknown_ == NearUnknown::Void ? kTarget : 0;
+    bool near = near_unknown_ != NearUnknown::Ignore, blocked = false;
     grid_.walk_unit(cells_.data(), *origin_cell, origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;
+      if (near && map::VoxelState(cell & 3) == map::VoxelState::Unknown && (cell & blocking) == blocking) {
+        const double depth_m = (grid_.center_of(grid_.key(i)) - origin).dot(axis);
+        blocked = depth_m < depth_min_m_;
+        if (blocked) return false;  // the ray counts nothing
+        near = depth_m < depth_min_m_ + diagonal_m_;
+      }
       if (map::VoxelState(cell & 3) == map::VoxelState::Occupied ||
           (unknown_depth_ > 0 && map::VoxelState(cell & 3) == map::VoxelState::Unknown && ++unknown > unknown_depth_)) {
         hit = i;  // a surface, or the first unknown cell the ray is not trusted beyond
@@ -127,6 +150,7 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     if (hit != std::size_t(-1) && depth_min_m_ > 0.0 &&
         (grid_.center_of(grid_.key(hit)) - origin).dot(axis) < depth_min_m_)
       continue;
+    if (blocked) continue;
     for (const std::size_t i : ws.ray_targets) {
       if (counted(i)) continue;  // a ray may cross a cell twice only by rounding; count once
       ws.counted_bits[i >> 6] |= std::uint64_t(1) << (i & 63);

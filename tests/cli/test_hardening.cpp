@@ -152,8 +152,8 @@ TEST(Hardening, IntrinsicsFilesAreHeldToTheCommandLinesLimits) {
       {R"({"fx":525,"fy":525,"cx":319.5,"cy":239.5,"width":640,"height":1e30})", "'height' must be 1 to 16384 pixels"},
       {R"({"fx":5e9,"fy":525,"cx":319.5,"cy":239.5,"width":640,"height":480})", "fx must be a non-zero focal length"},
   };
-  for (const auto& [json, words] : cases) {
-    std::ofstream(dir / "k.json") << json;
+  for (const auto& [intrinsics, words] : cases) {
+    std::ofstream(dir / "k.json") << intrinsics;
     expect_one_line(run_fvx(dir, "simulate " + scene + " --look-at 0,-1.5,1,0.5,0,0.3 --intrinsics k.json -o x.pcd",
                             "timeout 60"),
                     1, "k.json: " + words);

@@ -162,6 +162,7 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
       {"nbv box.ot --no-capmap --utility-vectors 3", 2, "--utility-vectors"},
       {"nbv box.ot --no-capmap --utility-vectors many", 2, "--utility-vectors"},
       {"nbv box.ot --no-capmap --coarse-rays 0x30", 2, "--coarse-rays"},
+      {"nbv box.ot --no-capmap --near-unknown none", 2, "--near-unknown"},
       {"nbv box.ot --no-capmap --coarse-rays coarse", 2, "--coarse-rays"},
       {"nbv missing.ot --no-capmap", 1, "missing.ot"},
       {"nbv s0.pcd --no-capmap", 1, "s0.pcd"},

@@ -26,12 +26,12 @@ using nlohmann::json;
 
 const std::string kArm = " --capmap '" + source("data/arms/fvx-arm.fcm") + "' --base 0.2,0,0,0,0,0 --arm '" +
                          source("data/arms/fvx-arm.urdf") + "'";
-const std::string kScene = " '" + source("data/scenes/paper-setting-2.ply") + "'";
+const std::string kReplayScene = " '" + source("data/scenes/paper-setting-2.ply") + "'";
 
 /// A 4-view explore session of paper-setting-2 in dir/session (recorded once per test binary
 /// run would save time, but each test owns its folder).
 json record(const TempDir& dir) {
-  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 4 --format json -o session");
+  const RunResult r = run_fvx(dir, "explore" + kReplayScene + kArm + " --max-views 4 --format json -o session");
   EXPECT_EQ(r.status, 0) << r.err;
   return r.status == 0 ? json::parse(r.out) : json();
 }
@@ -40,7 +40,7 @@ json report(const TempDir& dir, const std::string& path) { return json::parse(sl
 
 TEST(CliReplay, ATargetSizeIsRecordedAndReplayed) {
   const TempDir dir;
-  const RunResult e = run_fvx(dir, "explore" + kScene + kArm + " --target-size 0.1 --max-views 3 --format json -o session");
+  const RunResult e = run_fvx(dir, "explore" + kReplayScene + kArm + " --target-size 0.1 --max-views 3 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["min_void_width_cells"], 3);  // floor(0.1 / 0.025) - 1
@@ -72,21 +72,25 @@ TEST(CliReplay, ATargetSizeIsRecordedAndReplayed) {
 
 TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const TempDir dir;
-  const RunResult e = run_fvx(dir, "explore" + kScene + kArm +
-                                       " --void-hull search-space --unknown-depth 1 --coarse-rays 20x15 --max-views 3 --format json -o session");
+  const RunResult e = run_fvx(dir, "explore" + kReplayScene + kArm +
+                                       " --void-hull search-space --unknown-depth 1 --near-unknown any --coarse-rays 20x15"
+                                       " --max-views 3 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["hull_in_bounds"], true);
   EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["unknown_depth_cells"], 1);
+  EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["near_unknown"], "any");
   const session::Manifest m = session::read_manifest(dir / "session");
   EXPECT_TRUE(m.hull_in_bounds);
   EXPECT_EQ(m.unknown_depth_cells, 1);
+  EXPECT_EQ(m.near_unknown, "any");
   EXPECT_EQ(m.coarse_ray_cols, 20);
   EXPECT_EQ(m.coarse_ray_rows, 15);
   const RunResult r = run_fvx(dir, "replay session -o out --format json");
   ASSERT_EQ(r.status, 0) << r.err;
   const json replayed = json::parse(r.out);
   EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["coarse_rays"], json({20, 15}));
+  EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["near_unknown"], "any");
   ASSERT_EQ(replayed["results"]["rows"].size(), explored["results"]["rows"].size());
   for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
     const json& a = explored["results"]["rows"][i];
@@ -100,7 +104,7 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   ASSERT_EQ(whole.status, 0) << whole.err;
   EXPECT_GT(json::parse(whole.out)["results"]["rows"][0]["map_void_cells"].get<int>(),
             explored["results"]["rows"][0]["map_void_cells"].get<int>());
-  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1", "--coarse-rays 20"}) {
+  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1", "--coarse-rays 20", "--near-unknown none"}) {
     const RunResult b = run_fvx(dir, "replay session -o out3 " + bad);
     EXPECT_EQ(b.status, 2) << bad;
     EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << b.err;
@@ -143,13 +147,13 @@ TEST(CliReplay, RaysWithoutASurfaceClearSpaceWhenAskedAndReplayAlike) {
 // discretised insertion node for node elsewhere): recorded in the session, replayed alike.
 TEST(CliReplay, DiscretisedInsertionIsRecordedAndReplayed) {
   const TempDir dir;
-  const RunResult e = run_fvx(dir, "explore" + kScene + kArm + " --discretize --max-views 2 --format json -o session");
+  const RunResult e = run_fvx(dir, "explore" + kReplayScene + kArm + " --discretize --max-views 2 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["discretize"], true);
   EXPECT_TRUE(session::read_manifest(dir / "session").discretize);
   // The same first view (the start) gives another map than the exact insertion's.
-  const RunResult exact = run_fvx(dir, "explore" + kScene + kArm + " --max-views 1 -o exact");
+  const RunResult exact = run_fvx(dir, "explore" + kReplayScene + kArm + " --max-views 1 -o exact");
   ASSERT_EQ(exact.status, 0) << exact.err;
   EXPECT_FALSE(slurp(dir / "session/maps/view000.ot") == slurp(dir / "exact/maps/view000.ot"));  // binary: not printed
   const RunResult r = run_fvx(dir, "replay session -o out --format json");
@@ -337,7 +341,7 @@ double share_within_one_cell(const map::OccupancyMap& a, const map::OccupancyMap
 // more depends on the views: 100 against 96.7 % here).
 TEST(CliReplay, RegistrationUnderPoseNoiseMatchesTheNoiseFreeMap) {
   const TempDir dir;
-  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 8 --pose-noise 0.02,2 -o session");
+  const RunResult r = run_fvx(dir, "explore" + kReplayScene + kArm + " --max-views 8 --pose-noise 0.02,2 -o session");
   ASSERT_EQ(r.status, 0) << r.err;
   const session::Manifest m = session::read_manifest(dir / "session");
   ASSERT_TRUE(m.registration);
@@ -368,7 +372,7 @@ TEST(CliReplay, RegistrationUnderPoseNoiseMatchesTheNoiseFreeMap) {
 // --search-every 0 holds after the last view, byte for byte.
 TEST(CliReplay, IntegrateAndReplayWithoutSearchWriteTheSameMap) {
   const TempDir dir;
-  const RunResult r = run_fvx(dir, "explore" + kScene + kArm + " --max-views 4 --pose-noise 0.02,2 -o session");
+  const RunResult r = run_fvx(dir, "explore" + kReplayScene + kArm + " --max-views 4 --pose-noise 0.02,2 -o session");
   ASSERT_EQ(r.status, 0) << r.err;
   const session::Manifest m = session::read_manifest(dir / "session");
   std::vector<Eigen::Isometry3d> priors;

@@ -20,6 +20,7 @@
 #include "fvx/frontier_voids/frontier_voids.hpp"
 #include "fvx/io/intrinsics.hpp"
 #include "fvx/utility/utility.hpp"
+#include "fvx/viewpoints/fov.hpp"
 
 namespace fvx::nbv {
 
@@ -103,6 +104,11 @@ struct Config {
   /// U counts only the first N unknown cells of each ray (viewpoints::FovScorer::
   /// set_unknown_depth); 0: every void cell a ray crosses (the paper's).
   int unknown_depth_cells = 0;
+  /// What an unknown cell nearer than the sensor's minimum depth does to a ray of U
+  /// (viewpoints::NearUnknown; README, "Exploration over a scene suite", for the measurement).
+  /// `void` raises the suite's coverage but hides the closed box's view through its opening
+  /// from nearer than the minimum depth, so the default stays `ignore`.
+  viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Ignore;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
   /// (utility/utility.hpp).

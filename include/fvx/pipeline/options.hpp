@@ -70,12 +70,15 @@ std::pair<int, int> parse_cols_rows(const std::string& text, const std::string& 
 
 /// --void-hull map|search-space (pipeline::Config::hull_in_bounds), echoed at `echo`.
 OptionSpec void_hull_option(const std::string& echo);
-/// void_hull_option and --unknown-depth N
-/// (nbv::Config::unknown_depth_cells): two measured alternatives to the paper's void set
-/// and U, off by default (README, "Exploration over a scene suite").
+/// void_hull_option, --unknown-depth N (nbv::Config::unknown_depth_cells) and --near-unknown
+/// MODE (nbv::Config::near_unknown): measured alternatives to the paper's void set and U
+/// (README, "Exploration over a scene suite").
 std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, const std::string& nbv_echo);
 /// --void-hull's value as hull_in_bounds, `fallback` when absent; UsageError when bad.
 bool parse_void_hull(const Args& args, bool fallback);
+/// --near-unknown's value (nbv::Config::near_unknown), `fallback` when absent; UsageError
+/// when bad.
+viewpoints::NearUnknown parse_near_unknown(const Args& args, viewpoints::NearUnknown fallback);
 
 /// What the search models, for commands that search: --far-voids-only/--near-voids,
 /// --target-size, --accumulation/--utility-vectors and the depth camera; `pipeline_echo` and

@@ -59,6 +59,10 @@ struct Manifest {
   /// U counted only the first N unknown cells of each ray (nbv::Config::unknown_depth_cells;
   /// fvx explore --unknown-depth). Absent: 0, every void cell.
   int unknown_depth_cells = 0;
+  /// What an unknown cell nearer than the minimum depth did to a ray of U (nbv::Config::
+  /// near_unknown; fvx explore --near-unknown). Absent: "ignore", as every session before
+  /// the rule was searched.
+  std::string near_unknown = "ignore";
   /// Scans hold rays without a surface as points beyond the depth limit, which clear their
   /// ray (pipeline::Config::clear_beyond_range; fvx explore --no-return free). Absent: false.
   bool clear_beyond_range = false;

@@ -6,12 +6,15 @@
 
 #include <fstream>
 
+#include "capmap_fixtures.hpp"
 #include "fvx/capmap/capability_map.hpp"
 #include "fvx/core/error.hpp"
 #include "test_support.hpp"
 
 namespace fvx::capmap {
 namespace {
+
+using fixtures::bytes_of;
 
 TEST(DirectionSet, UnitSpiralWithNearestLookup) {
   const DirectionSet set(200);
@@ -49,11 +52,6 @@ CapabilityMap small_map(std::uint32_t shard_index = 0, std::uint32_t shard_count
     if (shard_count == 1 || std::uint32_t(v / 400) % shard_count == shard_index)  // z-slabs
       for (int d = int(v % 7); d < 200; d += 13) map.set(v, d);
   return map;
-}
-
-std::string bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
 TEST(CapabilityMap, QueriesFindTheVoxelAndTheNearestDirection) {

@@ -100,7 +100,7 @@ std::string rechecksummed(std::string bytes) {
 
 /// `bytes` (a samples shard) with `from` replaced by `to` in its header JSON, the header's
 /// length and the checksum made right again.
-std::string with_header_edit(const std::string& bytes, const std::string& from, const std::string& to) {
+std::string with_shard_header_edit(const std::string& bytes, const std::string& from, const std::string& to) {
   std::uint32_t length = 0;
   std::memcpy(&length, bytes.data() + 12, 4);
   std::string header = bytes.substr(16, length);
@@ -138,8 +138,8 @@ TEST(SampleShards, CorruptRoundsAreRefusedWithTheirProblem) {
       {edited(first_round + 16, fresh - 1, 8), "do not end with its bits"},
       {edited(first_round + 24, std::uint64_t(1) << 40, 8), "truncated"},
       {edited(bits_at + length - 1, 0x80, 1), "run past its bytes"},  // the last varint goes on
-      {with_header_edit(good, "\"directions\":50", "\"directions\":1"), "not bits of the grid"},
-      {with_header_edit(good, "\"fk_samples\":524288", "\"fk_samples\":1000"), "more configurations than the budget"},
+      {with_shard_header_edit(good, "\"directions\":50", "\"directions\":1"), "not bits of the grid"},
+      {with_shard_header_edit(good, "\"fk_samples\":524288", "\"fk_samples\":1000"), "more configurations than the budget"},
       {good.substr(0, rounds_at) + good.substr(good.size() - 8), "truncated"},
   };
   for (const auto& [bytes, mention] : cases) {

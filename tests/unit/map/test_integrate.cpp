@@ -148,8 +148,8 @@ TEST(Integrate, TheInnerNodeCheckTellsUpdatedTreesFromStaleOnes) {
 }
 
 TEST(Integrate, ChangeSetEqualsBruteForceDifference) {
-  const double R = 0.1;
-  OccupancyMap map(R);
+  const double resolution_m = 0.1;
+  OccupancyMap map(resolution_m);
   std::mt19937 rng(11);
   // Every ray stays inside [-3, 3]³: compare the states of all cells there.
   const auto k0 = *map.key_of({-3, -3, -3});

@@ -92,6 +92,25 @@ TEST(Session, AnOlderManifestsPlannerIsItsStrategy) {
   EXPECT_EQ(read_manifest(dir.path().string()).strategy, "random");
 }
 
+// Sessions searched before --near-unknown existed counted every ray: without the key they
+// replay as "ignore"; a value that is none of the three is refused.
+TEST(Session, AManifestWithoutNearUnknownWasSearchedIgnoringIt) {
+  const test::TempDir dir;
+  Manifest m;
+  m.created_by = "test";
+  m.near_unknown = "void";
+  write_manifest(dir.path().string(), m);
+  EXPECT_EQ(read_manifest(dir.path().string()).near_unknown, "void");
+  const std::string file = (dir.path() / "manifest.json").string();
+  const std::string text = test::slurp(file);
+  const auto key = text.find("  \"near_unknown\": \"void\",\n");
+  ASSERT_NE(key, std::string::npos);
+  std::ofstream(file) << std::string(text).erase(key, std::string("  \"near_unknown\": \"void\",\n").size());
+  EXPECT_EQ(read_manifest(dir.path().string()).near_unknown, "ignore");
+  std::ofstream(file) << std::string(text).replace(text.find("\"void\""), 6, "\"all\"");
+  EXPECT_THROW(read_manifest(dir.path().string()), FileError);
+}
+
 TEST(Session, ABadManifestNamesTheProblem) {
   const test::TempDir dir;
   EXPECT_THROW(read_manifest(dir.path().string()), FileError);

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
 #include <set>
 
+#include "fvx/core/error.hpp"
 #include "fvx/viewpoints/fov.hpp"
 #include "fvx/viewpoints/orientations.hpp"
 
@@ -107,7 +109,8 @@ struct RandomGrid {
 // depth_min gives no measurement: nothing on that ray counts.
 std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
                                   double range, double depth_min = 0.0,
-                                  const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ(), int unknown_depth = 0) {
+                                  const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ(), int unknown_depth = 0,
+                                  NearUnknown near_unknown = NearUnknown::Ignore) {
   const Eigen::Vector3d d = dir.normalized();
   std::vector<std::pair<double, std::size_t>> entered;
   for (std::size_t i = 0; i < g.grid->cell_count(); ++i) {
@@ -130,6 +133,11 @@ std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o,
   std::set<std::size_t> seen;
   int unknown = 0;  // with unknown_depth > 0, the cell after that many unknown ones ends the ray as a surface does
   for (const auto& [t, i] : entered) {
+    // An unknown cell nearer than depth_min (a void one, or any) may hide the ray's end.
+    const bool may_block = near_unknown == NearUnknown::Any || (near_unknown == NearUnknown::Void && g.target[i]);
+    if (may_block && g.grid->state_at(i) == map::VoxelState::Unknown &&
+        (g.grid->center_of(g.grid->key(i)) - o).dot(axis) < depth_min)
+      return {};
     const bool last_trusted = unknown_depth > 0 && g.grid->state_at(i) == map::VoxelState::Unknown && ++unknown > unknown_depth;
     if (g.grid->state_at(i) == map::VoxelState::Occupied || last_trusted) {
       if (depth_min > 0.0 && (g.grid->center_of(g.grid->key(i)) - o).dot(axis) < depth_min) return {};
@@ -280,6 +288,51 @@ TEST(FovScorer, UnknownDepthCountsOnlyTheFirstUnknownCellsOfEachRay) {
       EXPECT_LT(counted, counted_all);
     }
   }
+}
+
+// A ray that crosses an unknown cell nearer than the minimum depth counts nothing (a void
+// cell there with NearUnknown::Void, any unknown cell with Any), against the oracle; what
+// Any counts is within what Void counts, and that within what Ignore counts.
+TEST(FovScorer, AnUnknownCellNearerThanTheMinimumDepthLeavesItsRayCountingNothing) {
+  const RandomGrid g(12);
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  const auto rays = ray_fan(io::Intrinsics{}, 8, 6);
+  const double depth_min = 0.35;
+  FovScorer::Workspace ws;
+  std::map<NearUnknown, std::size_t> counted;
+  for (int pose = 0; pose < 30; ++pose) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+    T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+    std::vector<std::size_t> before;  // the previous mode's cells, a superset of this one's
+    for (const NearUnknown mode : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any}) {
+      FovScorer scorer(*g.grid, g.target, rays, 0.9, depth_min);
+      scorer.set_near_unknown(mode);
+      std::set<std::size_t> expected;
+      for (const auto& r : rays) {
+        const auto s = oracle_seen(g, T.translation(), T.linear() * r, 0.9 * r.norm(), depth_min, T.linear().col(2), 0,
+                                   mode);
+        expected.insert(s.begin(), s.end());
+      }
+      std::vector<std::size_t> seen;
+      scorer.score(T, ws, &seen);
+      ASSERT_EQ(seen, std::vector<std::size_t>(expected.begin(), expected.end()))
+          << "pose " << pose << " mode " << to_string(mode);
+      EXPECT_TRUE(std::includes(before.begin(), before.end(), seen.begin(), seen.end()) || mode == NearUnknown::Ignore);
+      before = seen;
+      counted[mode] += seen.size();
+    }
+  }
+  EXPECT_GT(counted[NearUnknown::Any], 0u);
+  EXPECT_LT(counted[NearUnknown::Any], counted[NearUnknown::Void]);
+  EXPECT_LT(counted[NearUnknown::Void], counted[NearUnknown::Ignore]);
+}
+
+TEST(FovScorer, NearUnknownModesReadAsTheyAreWritten) {
+  for (const NearUnknown mode : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any})
+    EXPECT_EQ(parse_near_unknown(to_string(mode), "--near-unknown"), mode);
+  EXPECT_THROW(parse_near_unknown("none", "--near-unknown"), UsageError);
 }
 
 }  // namespace
