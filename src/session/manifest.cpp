@@ -144,8 +144,11 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
   if (j.contains("unknown_depth_cells")) m.unknown_depth_cells = int(r.integer(j, "unknown_depth_cells", 0, 1000));
   if (j.contains("near_unknown")) {
     m.near_unknown = r.text(j, "near_unknown");
-    if (m.near_unknown != "ignore" && m.near_unknown != "void" && m.near_unknown != "any")
-      r.fail("'near_unknown' must be ignore, void or any");
+    try {  // the modes' names are viewpoints', read as replay will read them
+      viewpoints::parse_near_unknown(m.near_unknown, "'near_unknown'");
+    } catch (const UsageError& e) {
+      r.fail(e.what());
+    }
   }
   if (j.contains("accumulation")) {
     m.accumulation = r.text(j, "accumulation");
