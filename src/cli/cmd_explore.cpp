@@ -69,8 +69,8 @@ const CommandSpec kExploreSpec = {
 namespace {
 
 const std::vector<std::string> kExploreColumns = {"view",           "integration_s", "search_s",       "void_cells",
-                                           "utility_dm3",    "map_void_cells", "void_known_pct", "known_pct",
-                                           "target_seen",    "revealed",      "u_in_solid"};
+                                                  "utility_dm3",    "map_void_cells", "void_known_pct", "known_pct",
+                                                  "target_seen",    "revealed",      "u_in_solid"};
 
 /// The loop's settings from the options (all but the scene's: bounds and start come later).
 session::ExploreConfig parse_config(const Args& args) {

@@ -76,8 +76,8 @@ const CommandSpec kReplaySpec = {
 namespace {
 
 const std::vector<std::string> kReplayColumns = {"view",      "integration_s", "search_s", "void_cells",
-                                           "utility_dm3", "fitness_m",  "next_m",   "next_deg",
-                                           "revealed",  "map_void_cells", "known_dm3"};
+                                                 "utility_dm3", "fitness_m",  "next_m",   "next_deg",
+                                                 "revealed",  "map_void_cells", "known_dm3"};
 
 /// What a replay reads: the scans (loaded when their turn comes) and what the JSON names.
 struct Inputs {

@@ -141,8 +141,7 @@ std::vector<OptionSpec> near_voids_options(const std::string& echo) {
   return {{"far-voids-only", 0, nullptr, "only what the sensor can measure: U counts void cells from its minimum "
                                          "depth on, Algorithm 1 adds utility from that distance beyond the "
                                          "frontier (default: every void cell a ray crosses, utility from the "
-                                         "frontier on)",
-           echo + "/count_near_void_cells"},
+                                         "frontier on)", echo + "/count_near_void_cells"},
           {"near-voids", 0, nullptr, "every void cell a ray crosses counts (the default; kept for scripts)",
            echo + "/count_near_void_cells"}};
 }
