@@ -6,12 +6,12 @@
 namespace fvx::map {
 namespace {
 
-constexpr double R = 0.25;
+constexpr double kCell_m = 0.25;  // not R: a unity batch puts dense_grid.hpp's locals named R under it
 
 /// A corridor along +x: cells x = 0..7 (metres 0..2) free, cell 8 ([2, 2.25)) occupied,
 /// everything else unknown.
 OccupancyMap corridor() {
-  OccupancyMap map(R);
+  OccupancyMap map(kCell_m);
   map.integrate({Eigen::Vector3f(2.125f, 0.125f, 0.125f)}, Eigen::Vector3f(0.125f, 0.125f, 0.125f));
   return map;
 }
@@ -48,7 +48,7 @@ TEST(RayCast, PassingUnknownReachesMaxRangeOrOutOfBounds) {
   query.max_range_m = std::numeric_limits<double>::infinity();
   const RayCast cast = map.cast_ray(query);
   EXPECT_EQ(cast.outcome, RayOutcome::OutOfBounds);
-  EXPECT_NEAR(cast.distance_m, 32768 * R + 0.125, 1e-6);  // the key space ends at -32768 R
+  EXPECT_NEAR(cast.distance_m, 32768 * kCell_m + 0.125, 1e-6);  // the key space ends at -32768 cells
 }
 
 TEST(RayCast, OriginOutsideTheKeySpaceIsOutOfBounds) {
