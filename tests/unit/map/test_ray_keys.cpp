@@ -10,10 +10,15 @@
 namespace fvx::map {
 namespace {
 
+/// One KeyRay for every ray: its constructor fills 100 000 keys, which under ASan took most
+/// of these tests' 30 s.
+octomap::KeyRay& reused_key_ray() {
+  static octomap::KeyRay ray;
+  return ray;
+}
+
 void expect_same_keys(const octomap::OcTree& tree, const octomap::point3d& a, const octomap::point3d& b) {
-  // One KeyRay for every ray: its constructor fills 100 000 keys, which under ASan took
-  // most of the test's 30 s.
-  static octomap::KeyRay reference;
+  octomap::KeyRay& reference = reused_key_ray();
   const bool ok_reference = tree.computeRayKeys(a, b, reference);
   std::vector<octomap::OcTreeKey> mine;
   const bool ok_mine = for_each_ray_key(tree, a, b, [&](const octomap::OcTreeKey& k) { mine.push_back(k); });
@@ -36,9 +41,7 @@ TEST(RayKeys, EqualToOctoMapOnRandomRays) {
 // The bitmap walk (integrate's hot loop) marks computeRayKeys's cells, in its order, in a
 // box holding both ends with integrate's margin of two cells.
 void expect_same_marks(const octomap::OcTree& tree, const octomap::point3d& a, const octomap::point3d& b) {
-  // One KeyRay for every ray: its constructor fills 100 000 keys, which under ASan took
-  // most of the test's 30 s.
-  static octomap::KeyRay reference;
+  octomap::KeyRay& reference = reused_key_ray();
   const bool ok_reference = tree.computeRayKeys(a, b, reference);
   octomap::OcTreeKey ka, kb;
   if (!tree.coordToKeyChecked(a, ka) || !tree.coordToKeyChecked(b, kb)) {
