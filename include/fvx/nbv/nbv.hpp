@@ -107,7 +107,8 @@ struct Config {
   /// What an unknown cell nearer than the sensor's minimum depth does to a ray of U
   /// (viewpoints::NearUnknown; README, "Exploration over a scene suite", for the measurement).
   /// `void` raises the suite's coverage but hides the closed box's view through its opening
-  /// from nearer than the minimum depth, so the default stays `ignore`.
+  /// from nearer than the minimum depth, and the best view's U on the slambook map then
+  /// varies by a factor of two from seed to seed, so the default stays `ignore`.
   viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Ignore;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one

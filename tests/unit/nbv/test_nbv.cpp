@@ -324,8 +324,10 @@ std::size_t full_fan_U(const map::OccupancyMap& map, const frontier_voids::Analy
     if (!a.frontier_voids[std::size_t(v.id)].enclosed())
       for (const map::VoxelKey& k : v.cells)
         if (grid.contains(k)) mask[grid.index(k)] = 1;
-  const viewpoints::FovScorer scorer(grid, std::move(mask), viewpoints::ray_fan(c.sensor.intrinsics, c.ray_cols, c.ray_rows),
-                                     c.sensor.depth_max_m, c.sensor.depth_min_m);
+  viewpoints::FovScorer scorer(grid, std::move(mask), viewpoints::ray_fan(c.sensor.intrinsics, c.ray_cols, c.ray_rows),
+                               c.sensor.depth_max_m, c.sensor.depth_min_m, c.count_near_void_cells);
+  scorer.set_unknown_depth(c.unknown_depth_cells);  // U as the search's config defines it
+  scorer.set_near_unknown(c.near_unknown);
   viewpoints::FovScorer::Workspace ws;
   std::vector<std::size_t> seen;
   const std::size_t U = scorer.score(T, ws, &seen).targets_seen;
@@ -394,6 +396,21 @@ TEST(Nbv, ScreenedPosesAreRankedByTheFullFanAndKeepTheBestView) {
     double screened = 0, full = 0;
     for (std::uint64_t seed = 1; seed <= 8; ++seed) compare_screened(box.map, box.analysis, reach, seed, screened, full);
     EXPECT_GE(screened, 0.95 * full) << (on_arm ? "arm" : "free-flying");
+  }
+}
+
+// The same invariants when near unknown cells block rays of U (--near-unknown void or any):
+// the screened views are ranked by, and carry, the full fan's U under that rule.
+TEST(Nbv, ScreenedPosesCarryTheFullFansUUnderEveryNearUnknownRule) {
+  const Arm arm;
+  const map::OccupancyMap map = replica("paper-setting-2");
+  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, std::nullopt, voids::ClusterConfig{});
+  for (const auto mode : {viewpoints::NearUnknown::Void, viewpoints::NearUnknown::Any}) {
+    Config base;
+    base.near_unknown = mode;
+    double screened = 0, full = 0;
+    compare_screened(map, a, arm.reach({0.2, 0, 0}), 1, screened, full, base);
+    EXPECT_GT(full, 0.0) << viewpoints::to_string(mode) << ": no view sees a void cell, the test compares nothing";
   }
 }
 
