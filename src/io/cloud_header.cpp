@@ -195,12 +195,80 @@ struct PlyElement {
   std::uint64_t min_bytes = 0;  ///< per element in binary: its scalars, and each list's count
 };
 
+/// What PCL's PLYReader builds from a header that it cannot be trusted with (fuzzing found
+/// each): it sizes the cloud by obj_info num_cols x num_rows when both are set (120 GB from
+/// a 200-byte file; fewer cells than vertices write past its buffer and assert; more cells
+/// are zeros, points at the origin, unless a range_grid element places the vertices in them),
+/// asserts on an obj_info line that does not start at its first column, and keeps uchar
+/// red [green] blue as one rgb field whose bytes it writes at blue (a blue without red before
+/// it asserts; other orders write into the wrong field).
+struct PlyLayout {
+  std::uint32_t width = 0, height = 0;  ///< as PCL holds them while it reads the header
+  long long vertices = -1;              ///< the vertex element's count; -1 without one
+  long long range_grid = -1;            ///< the range_grid element's count; -1 without one
+  std::string colour;                   ///< the open red..blue run's last name, or ""
+  bool rgb = false;                     ///< a whole red..blue run was read (alpha amends it)
+};
+
+/// obj_info's number as PCL reads it: atoi (glibc: int(strtol)), stored as uint32.
+std::uint32_t pcl_atoi(const std::string& text) {
+  return std::uint32_t(int(std::strtol(text.c_str(), nullptr, 10)));
+}
+
+void read_ply_obj_info(const std::string& path, const std::string& line, const std::vector<std::string>& t,
+                       PlyLayout& layout) {
+  if (line.compare(0, 8, "obj_info") != 0)
+    throw FileError(path, "PLY header line '" + line + "' does not start with obj_info (PCL cannot read it)");
+  if (t.size() < 3) return;
+  if (t[1] == "num_cols") layout.width = pcl_atoi(t[2]);
+  if (t[1] == "num_rows") layout.height = pcl_atoi(t[2]);
+}
+
+void read_ply_element(const std::string& path, const std::vector<std::string>& t, std::vector<PlyElement>& elements,
+                      PlyLayout& layout) {
+  elements.push_back({t[1], count_of(path, "element " + t[1], t[2]), 0});
+  if (t[1] == "range_grid") layout.range_grid = elements.back().count;
+  if (t[1] != "vertex") return;
+  if (layout.vertices >= 0) throw FileError(path, "PLY header declares two vertex elements");
+  layout.vertices = elements.back().count;
+  if (layout.width == 0 || layout.height == 0) layout.width = std::uint32_t(layout.vertices), layout.height = 1;
+}
+
+/// PCL's colour properties of a vertex: uchar red [green] blue in a row, alpha after them.
+void read_ply_colour(const std::string& path, const std::string& type, const std::string& name, PlyLayout& layout) {
+  auto is = [&](const char* c) { return name == c || name == std::string("diffuse_") + c; };
+  const bool uchar = type == "uchar" || type == "uint8";
+  const bool colour = uchar && (is("red") || is("green") || is("blue"));
+  const bool follows = (is("green") && layout.colour == "red") || (is("blue") && !layout.colour.empty());
+  if (colour && (is("red") ? !layout.colour.empty() : !follows))
+    throw FileError(path, "PLY vertex colour '" + name + "' is not in a uchar red [green] blue run; PCL misreads it");
+  if (!colour && !layout.colour.empty())
+    throw FileError(path, "PLY vertex property '" + name + "' splits a red [green] blue run; PCL misreads it");
+  if (uchar && name == "alpha" && !layout.rgb)
+    throw FileError(path, "PLY vertex property 'alpha' without red, green and blue before it; PCL cannot read it");
+  layout.colour = !colour || is("blue") ? "" : (is("red") ? "red" : "green");
+  layout.rgb = layout.rgb || (colour && is("blue"));
+}
+
+/// The end of the header: PCL's cloud is width x height cells, the vertices or the range grid
+/// that places them (PCL's writer drops NaN points of an organised cloud and writes one).
+void check_ply_layout(const std::string& path, const PlyLayout& layout) {
+  if (!layout.colour.empty()) throw FileError(path, "PLY vertex colour red has no blue after it; PCL misreads it");
+  const std::uint64_t cells = std::uint64_t(layout.width) * layout.height;
+  const bool gridded = layout.range_grid >= layout.vertices && cells == std::uint64_t(layout.range_grid);
+  if (layout.vertices >= 0 && cells != std::uint64_t(layout.vertices) && !gridded)
+    throw FileError(path, "PLY obj_info num_cols x num_rows (" + std::to_string(layout.width) + " x " +
+                              std::to_string(layout.height) + ") is neither the vertex count " +
+                              std::to_string(layout.vertices) + " nor a range_grid's");
+}
+
 }  // namespace
 
 bool check_ply_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line, format;
   std::vector<PlyElement> elements;
+  PlyLayout layout;
   for (std::size_t n = 0;; ++n) {
     if (n > kMaxHeaderLines || !std::getline(in, line)) throw FileError(path, "corrupt PLY header: no end_header");
     const std::vector<std::string> t = split_whitespace(line);
@@ -211,7 +279,8 @@ bool check_ply_header(const std::string& path) {
     if (!kKeywords.count(t[0]) || (t[0] == "ply") != (n == 0))
       throw FileError(path, "corrupt PLY header: '" + line + "'");
     if (t[0] == "format" && t.size() >= 2) format = t[1];
-    if (t[0] == "element" && t.size() == 3) elements.push_back({t[1], count_of(path, "element " + t[1], t[2]), 0});
+    if (t[0] == "obj_info") read_ply_obj_info(path, line, t, layout);
+    if (t[0] == "element" && t.size() == 3) read_ply_element(path, t, elements, layout);
     if (t[0] != "property") continue;
     const bool list = t.size() == 5 && t[1] == "list";
     const std::string type = list ? t[2] : (t.size() == 3 ? t[1] : "");
@@ -220,8 +289,10 @@ bool check_ply_header(const std::string& path) {
     // PCL aborts on some list properties of vertices (an assert in its reader).
     if (list && elements.back().name == "vertex")
       throw FileError(path, "PLY vertex property '" + t.back() + "' is a list; fvx reads vertices of single values");
+    if (elements.back().name == "vertex") read_ply_colour(path, type, t.back(), layout);
     elements.back().min_bytes += ply_type_bytes(type);
   }
+  check_ply_layout(path, layout);
   if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
     throw FileError(path, "PLY format '" + format + "': expected ascii, binary_little_endian or binary_big_endian");
   const std::uint64_t left = bytes_after(in, path);

@@ -48,6 +48,25 @@ TEST(CloudFile, AsciiPly) {
   EXPECT_EQ(c.points[1], Eigen::Vector3d(4, 5, 6));
 }
 
+// The headers PCL 1.13's PLYWriter makes: obj_info lines, colour as uchar red green blue
+// alpha, and for an organised cloud its valid points placed by a range_grid element.
+TEST(CloudFile, PlyAsPclWritesItIsRead) {
+  const test::TempDir dir;
+  std::ofstream(dir / "p.ply") << "ply\nformat ascii 1.0\ncomment PCL generated\nobj_info is_cyberware_data 0\n"
+                                  "obj_info num_cols 2\nobj_info num_rows 2\nobj_info echo_rgb_offset_x 0\n"
+                                  "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                  "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+                                  "element face 0\nelement range_grid 4\nproperty list uchar int vertex_indices\n"
+                                  "end_header\n1 2 3 9 9 9 255\n4 5 6 9 9 9 255\n7 8 9 9 9 9 255\n1 0\n1 1\n0\n1 2\n";
+  const CloudFile c = read_cloud(dir / "p.ply");
+  ASSERT_EQ(c.points.size(), 4u);
+  EXPECT_EQ(c.width, 2);
+  EXPECT_EQ(c.height, 2);
+  EXPECT_EQ(c.points[1], Eigen::Vector3d(4, 5, 6));
+  EXPECT_FALSE(c.points[2].allFinite());  // the cell the range grid left empty
+  EXPECT_EQ(c.points[3], Eigen::Vector3d(7, 8, 9));
+}
+
 // PCL skips a header line it does not know and reads the data with the wrong layout, and
 // aborts on a list property of vertices: both are refused before PCL reads the file.
 TEST(CloudFile, PlyHeadersPclWouldMisreadAreRefused) {
@@ -57,7 +76,20 @@ TEST(CloudFile, PlyHeadersPclWouldMisreadAreRefused) {
        {std::pair{"ply\nformat ascii 1.0\n" + body + "pront face 1\nend_header\n0 0 1\n", "corrupt PLY header: 'pront face 1'"},
         {"format ascii 1.0\n" + body + "end_header\n0 0 1\n", "corrupt PLY header: 'format ascii 1.0'"},
         {"ply\nformat ascii 1.0\n" + body + "property list uchar int idx\nend_header\n0 0 1 1 5\n",
-         "PLY vertex property 'idx' is a list"}}) {
+         "PLY vertex property 'idx' is a list"},
+        // Fuzzing found these: PCL allocated 120 GB, or asserted (exit 134).
+        {"ply\nformat ascii 1.0\nobj_info num_cols 100000\nobj_info num_rows 100000\n" + body + "end_header\n0 0 1\n",
+         "num_cols x num_rows (100000 x 100000) is neither the vertex count 1"},
+        {"ply\nformat ascii 1.0\n" + body + "obj_info num_rows -1\nend_header\n0 0 1\n",
+         "num_cols x num_rows (1 x 4294967295)"},
+        {"ply\nformat ascii 1.0\n obj_info num_cols 1\n" + body + "end_header\n0 0 1\n",
+         "' obj_info num_cols 1' does not start with obj_info"},
+        {"ply\nformat ascii 1.0\n" + body + "property uchar blue\nend_header\n0 0 1 1\n",
+         "colour 'blue' is not in a uchar red [green] blue run"},
+        {"ply\nformat ascii 1.0\n" + body + "property uchar red\nproperty float w\nproperty uchar blue\nend_header\n0 0 1 1 1 1\n",
+         "'w' splits a red [green] blue run"},
+        {"ply\nformat ascii 1.0\n" + body + "property uchar red\nend_header\n0 0 1 1\n", "red has no blue after it"},
+        {"ply\nformat ascii 1.0\n" + body + "property uchar alpha\nend_header\n0 0 1 1\n", "'alpha' without red"}}) {
     std::ofstream(dir / "p.ply") << header;
     try {
       read_cloud(dir / "p.ply");
