@@ -89,7 +89,8 @@ TEST(CloudFile, PlyHeadersPclWouldMisreadAreRefused) {
         {"ply\nformat ascii 1.0\n" + body + "property uchar red\nproperty float w\nproperty uchar blue\nend_header\n0 0 1 1 1 1\n",
          "'w' splits a red [green] blue run"},
         {"ply\nformat ascii 1.0\n" + body + "property uchar red\nend_header\n0 0 1 1\n", "red has no blue after it"},
-        {"ply\nformat ascii 1.0\n" + body + "property uchar alpha\nend_header\n0 0 1 1\n", "'alpha' without red"}}) {
+        {"ply\nformat ascii 1.0\n" + body + "property uchar alpha\nend_header\n0 0 1 1\n", "'alpha' without red"},
+        {"ply\nformat ascii 1.0\n" + body + body + "end_header\n0 0 1\n0 0 1\n", "two vertex elements"}}) {
     std::ofstream(dir / "p.ply") << header;
     try {
       read_cloud(dir / "p.ply");
