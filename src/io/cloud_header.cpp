@@ -195,8 +195,8 @@ struct PlyElement {
   std::uint64_t min_bytes = 0;  ///< per element in binary: its scalars, and each list's count
 };
 
-/// What PCL's PLYReader builds from a header that it cannot be trusted with (fuzzing found
-/// each): it sizes the cloud by obj_info num_cols x num_rows when both are set (120 GB from
+/// What PCL's PLYReader builds from a header that it cannot be trusted with (CI's fuzzer
+/// found one; reading PCL 1.13's reader, the rest): it sizes the cloud by obj_info num_cols x num_rows when both are set (120 GB from
 /// a 200-byte file; fewer cells than vertices write past its buffer and assert; more cells
 /// are zeros, points at the origin, unless a range_grid element places the vertices in them),
 /// asserts on an obj_info line that does not start at its first column, and keeps uchar
