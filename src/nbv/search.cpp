@@ -109,6 +109,12 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
                                                         config.sensor.depth_min_m, config.count_near_void_cells);
   void_scorer->set_unknown_depth(config.unknown_depth_cells);
   void_scorer->set_near_unknown(config.near_unknown);
+  if (config.near_unknown == viewpoints::NearUnknown::Hidden) {
+    std::vector<std::size_t> hidden;
+    for (const map::VoxelKey& k : hidden_void_cells)
+      if (grid.contains(k)) hidden.push_back(grid.index(k));
+    void_scorer->set_blocking(hidden);
+  }
   if (config.strategy == Strategy::Frontier) {
     for (const auto& c : a.frontier_clusters)
       if (!frontier_target || c.cells.size() > frontier_target->cells.size()) frontier_target = &c;

@@ -9,13 +9,19 @@
 namespace fvx::viewpoints {
 
 const char* to_string(NearUnknown mode) {
-  return mode == NearUnknown::Ignore ? "ignore" : mode == NearUnknown::Void ? "void" : "any";
+  switch (mode) {
+    case NearUnknown::Ignore: return "ignore";
+    case NearUnknown::Void: return "void";
+    case NearUnknown::Any: return "any";
+    case NearUnknown::Hidden: return "hidden";
+  }
+  return "?";
 }
 
 NearUnknown parse_near_unknown(const std::string& name, const std::string& what) {
-  for (const NearUnknown m : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any})
+  for (const NearUnknown m : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any, NearUnknown::Hidden})
     if (name == to_string(m)) return m;
-  throw UsageError(what + " '" + name + "': expected ignore, void or any");
+  throw UsageError(what + " '" + name + "': expected ignore, void, any or hidden");
 }
 
 std::vector<Eigen::Vector3d> ray_fan(const io::Intrinsics& K, int cols, int rows) {
@@ -81,6 +87,13 @@ FovScorer::FovScorer(const map::DenseGrid& grid, core::LargeVector<std::uint8_t>
   FVX_ASSERT(depth_max_m_ > 0.0, "FovScorer: depth_max_m must be > 0");
 }
 
+void FovScorer::set_blocking(const std::vector<std::size_t>& cells) {
+  for (const std::size_t i : cells) {
+    FVX_ASSERT(i < cells_.size(), "FovScorer::set_blocking: a cell beyond the grid");
+    cells_[i] |= kBlocking;
+  }
+}
+
 void FovScorer::ascending(const Workspace& ws, std::vector<std::size_t>& seen) {
   seen.clear();
   seen.reserve(ws.counted.size());
@@ -124,7 +137,9 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     // (NearUnknown). Centres' depths along a ray fall back by up to a cell's diagonal, so the
     // check ends at the first such cell whose centre lies that far beyond the minimum depth.
     // Like the occupied-cell rule below, it sees the cells the walk enters before it stops.
-    const std::uint8_t blocking = near_unknown_ == NearUnknown::Void ? kTarget : 0;
+    const std::uint8_t blocking = near_unknown_ == NearUnknown::Void     ? kTarget
+                                  : near_unknown_ == NearUnknown::Hidden ? kBlocking
+                                                                         : 0;
     bool near = near_unknown_ != NearUnknown::Ignore, blocked = false;
     grid_.walk_unit(cells_.data(), *origin_cell, origin, d, range_m, [&](std::size_t i, std::uint8_t cell) {
       ++s.cells_visited;

@@ -106,10 +106,13 @@ struct Config {
   int unknown_depth_cells = 0;
   /// What an unknown cell nearer than the sensor's minimum depth does to a ray of U
   /// (viewpoints::NearUnknown; README, "Exploration over a scene suite", for the measurement).
-  /// `void` raises the suite's coverage but hides the closed box's view through its opening
-  /// from nearer than the minimum depth, and the best view's U on the slambook map then
-  /// varies by a factor of two from seed to seed, so the default stays `ignore`.
-  viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Ignore;
+  /// `void` raises the suite's coverage most but hides the closed box's view through its
+  /// opening from nearer than the minimum depth, and the best view's U on the slambook map
+  /// then varies by a factor of two from seed to seed. The default, `hidden`, applies the rule
+  /// only to the void cells a taken view left unknown (the loops' hidden cells, given to the
+  /// search): evidence that something hides there. A single search has none, so it counts as
+  /// `ignore` did; the loops gained on the suite and the replicas (measured against `ignore`).
+  viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Hidden;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
   /// (utility/utility.hpp).

@@ -36,12 +36,16 @@ Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_r
 /// the Kinect then measures nothing along it: in the suite, 63 of 336 views chosen while such
 /// rays counted measured no pixel at all (README, "Exploration over a scene suite").
 enum class NearUnknown {
-  Ignore,  ///< nothing: the ray counts as if the cell were free (the default)
+  Ignore,  ///< nothing: the ray counts as if the cell were free
   Void,    ///< a target cell (a void cell) there leaves the ray counting nothing
   Any,     ///< any unknown cell there leaves the ray counting nothing
+  /// a blocking cell there (FovScorer::set_blocking: in the loops, a void cell a taken view
+  /// was expected to reveal and left unknown) leaves the ray counting nothing: the rule
+  /// applies where a view has shown that something hides in the void (nbv::Config's default)
+  Hidden,
 };
 const char* to_string(NearUnknown mode);
-/// "ignore", "void" or "any"; UsageError naming `what` otherwise.
+/// "ignore", "void", "any" or "hidden"; UsageError naming `what` otherwise.
 NearUnknown parse_near_unknown(const std::string& name, const std::string& what);
 
 /// Counts the target cells (void cells, or a frontier cluster's cells) a pose sees.
@@ -82,6 +86,9 @@ class FovScorer {
   void set_unknown_depth(int cells) { unknown_depth_ = cells; }
   /// What an unknown cell nearer than the minimum depth does to its ray (NearUnknown).
   void set_near_unknown(NearUnknown mode) { near_unknown_ = mode; }
+  /// The cells (grid indices) that block a ray nearer than the minimum depth under
+  /// NearUnknown::Hidden while they are unknown.
+  void set_blocking(const std::vector<std::size_t>& cells);
 
  private:
   /// The cells of ws.counted, ascending.
@@ -92,6 +99,7 @@ class FovScorer {
   /// walk loads one byte per cell.
   core::LargeVector<std::uint8_t> cells_;
   static constexpr std::uint8_t kTarget = 4;
+  static constexpr std::uint8_t kBlocking = 8;  ///< set_blocking
   /// The box of the target cells (as cubes, half a cell wider for rounding): a ray is walked
   /// only until it leaves it (or to the minimum depth, where a surface voids the ray), and
   /// not at all when it misses it.

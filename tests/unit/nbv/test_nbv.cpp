@@ -504,6 +504,59 @@ TEST(Nbv, HiddenVoidCellsLeaveAlgorithmOnesUtility) {
   EXPECT_TRUE(all_hidden.views.empty());
 }
 
+/// U of pose T on the closed box's search grid, cast independently of the search: targets are
+/// the void cells of voids a frontier touches except `hidden`, which block rays nearer than the
+/// minimum depth under `mode` == Hidden.
+std::size_t U_with_hidden(const ClosedBox& box, const Config& c, const std::vector<map::VoxelKey>& hidden,
+                          viewpoints::NearUnknown mode, const Eigen::Isometry3d& T) {
+  const map::Stats stats = box.map.stats();
+  const map::DenseGrid grid(box.map, Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m));
+  core::LargeVector<std::uint8_t> mask(grid.cell_count(), 0);
+  for (const auto& v : box.analysis.void_clusters)
+    if (!box.analysis.frontier_voids[std::size_t(v.id)].enclosed())
+      for (const map::VoxelKey& k : v.cells)
+        if (grid.contains(k)) mask[grid.index(k)] = 1;
+  std::vector<std::size_t> blocking;
+  for (const map::VoxelKey& k : hidden)
+    if (grid.contains(k)) {
+      mask[grid.index(k)] = 0;
+      blocking.push_back(grid.index(k));
+    }
+  viewpoints::FovScorer scorer(grid, std::move(mask), viewpoints::ray_fan(c.sensor.intrinsics, c.ray_cols, c.ray_rows),
+                               c.sensor.depth_max_m, c.sensor.depth_min_m, c.count_near_void_cells);
+  scorer.set_near_unknown(mode);
+  scorer.set_blocking(blocking);
+  viewpoints::FovScorer::Workspace ws;
+  return scorer.score(T, ws).targets_seen;
+}
+
+// --near-unknown hidden: the void cells a taken view left unknown (the loop's hidden cells)
+// block the rays that cross them nearer than the minimum depth. Hidden here: the cells of the
+// closed box's best view (ignore) nearer than 0.5 m, as if that view had come back blank
+// there. Every view then carries the U of an independent cast under the rule, and the old
+// best pose sees fewer void cells under it than with the rule off.
+TEST(Nbv, UnderHiddenTheVoidCellsAViewLeftUnknownBlockNearRays) {
+  const ClosedBox& box = closed_box();
+  Config config = coarse();
+  const Result before = select(box.map, box.analysis, std::nullopt, config);
+  ASSERT_FALSE(before.views.empty()) << before.reason;
+  const nbv::View& best = before.views.front();
+  std::vector<map::VoxelKey> hidden;
+  for (const map::VoxelKey& k : best.seen_void_cells) {
+    const double depth_m = (box.map.center_of(k) - best.T_world_sensor.translation()).dot(best.T_world_sensor.linear().col(2));
+    if (depth_m < config.sensor.depth_min_m) hidden.push_back(k);
+  }
+  ASSERT_FALSE(hidden.empty()) << "the best view sees no void cell nearer than the minimum depth";
+  std::sort(hidden.begin(), hidden.end());
+  config.near_unknown = viewpoints::NearUnknown::Hidden;
+  const Result after = select(box.map, box.analysis, std::nullopt, config, hidden);
+  ASSERT_FALSE(after.views.empty()) << after.reason;
+  for (const nbv::View& v : after.views)
+    EXPECT_EQ(v.void_cells_seen, U_with_hidden(box, config, hidden, viewpoints::NearUnknown::Hidden, v.T_world_sensor));
+  EXPECT_LT(U_with_hidden(box, config, hidden, viewpoints::NearUnknown::Hidden, best.T_world_sensor),
+            U_with_hidden(box, config, hidden, viewpoints::NearUnknown::Ignore, best.T_world_sensor));
+}
+
 TEST(Nbv, TheSensorStaysInsideTheViewBounds) {
   const ClosedBox& box = closed_box();
   Config config = coarse();

@@ -93,7 +93,7 @@ TEST(Session, AnOlderManifestsPlannerIsItsStrategy) {
 }
 
 // Sessions searched before --near-unknown existed counted every ray: without the key they
-// replay as "ignore"; a value that is none of the three is refused.
+// replay as "ignore"; a value that is none of the four is refused.
 TEST(Session, AManifestWithoutNearUnknownWasSearchedIgnoringIt) {
   const test::TempDir dir;
   Manifest m;

@@ -110,7 +110,8 @@ struct RandomGrid {
 std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
                                   double range, double depth_min = 0.0,
                                   const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ(), int unknown_depth = 0,
-                                  NearUnknown near_unknown = NearUnknown::Ignore) {
+                                  NearUnknown near_unknown = NearUnknown::Ignore,
+                                  const std::set<std::size_t>& blocking = {}) {
   const Eigen::Vector3d d = dir.normalized();
   std::vector<std::pair<double, std::size_t>> entered;
   for (std::size_t i = 0; i < g.grid->cell_count(); ++i) {
@@ -134,7 +135,8 @@ std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o,
   int unknown = 0;  // with unknown_depth > 0, the cell after that many unknown ones ends the ray as a surface does
   for (const auto& [t, i] : entered) {
     // An unknown cell nearer than depth_min (a void one, or any) may hide the ray's end.
-    const bool may_block = near_unknown == NearUnknown::Any || (near_unknown == NearUnknown::Void && g.target[i]);
+    const bool may_block = near_unknown == NearUnknown::Any || (near_unknown == NearUnknown::Void && g.target[i]) ||
+                           (near_unknown == NearUnknown::Hidden && blocking.count(i));
     if (may_block && g.grid->state_at(i) == map::VoxelState::Unknown &&
         (g.grid->center_of(g.grid->key(i)) - o).dot(axis) < depth_min)
       return {};
@@ -329,8 +331,56 @@ TEST(FovScorer, AnUnknownCellNearerThanTheMinimumDepthLeavesItsRayCountingNothin
   EXPECT_LT(counted[NearUnknown::Void], counted[NearUnknown::Ignore]);
 }
 
+// NearUnknown::Hidden: only the cells set_blocking names block a ray nearer than the minimum
+// depth (while unknown), against the oracle; without them it counts what Ignore counts, and
+// with every unknown cell named what Any counts.
+TEST(FovScorer, UnderHiddenOnlyTheBlockingCellsNearerThanTheMinimumDepthLeaveTheRayCountingNothing) {
+  const RandomGrid g(14);
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  const auto rays = ray_fan(io::Intrinsics{}, 8, 6);
+  const double depth_min = 0.35;
+  std::set<std::size_t> some, every_unknown;
+  for (std::size_t i = 0; i < g.grid->cell_count(); ++i)
+    if (g.grid->state_at(i) == map::VoxelState::Unknown) {
+      every_unknown.insert(i);
+      if (u(rng) < 0.3) some.insert(i);
+    }
+  ASSERT_FALSE(some.empty());
+  FovScorer::Workspace ws;
+  std::size_t counted_some = 0, counted_ignore = 0;
+  for (int pose = 0; pose < 30; ++pose) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+    T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+    auto seen_with = [&](NearUnknown mode, const std::set<std::size_t>& blocking) {
+      FovScorer scorer(*g.grid, g.target, rays, 0.9, depth_min);
+      scorer.set_near_unknown(mode);
+      if (mode == NearUnknown::Hidden) scorer.set_blocking(std::vector<std::size_t>(blocking.begin(), blocking.end()));
+      std::vector<std::size_t> seen;
+      scorer.score(T, ws, &seen);
+      return seen;
+    };
+    std::set<std::size_t> expected;
+    for (const auto& r : rays) {
+      const auto s = oracle_seen(g, T.translation(), T.linear() * r, 0.9 * r.norm(), depth_min, T.linear().col(2), 0,
+                                 NearUnknown::Hidden, some);
+      expected.insert(s.begin(), s.end());
+    }
+    const auto hidden = seen_with(NearUnknown::Hidden, some);
+    ASSERT_EQ(hidden, std::vector<std::size_t>(expected.begin(), expected.end())) << "pose " << pose;
+    const auto ignore = seen_with(NearUnknown::Ignore, {});
+    EXPECT_EQ(seen_with(NearUnknown::Hidden, {}), ignore) << "pose " << pose;
+    EXPECT_EQ(seen_with(NearUnknown::Hidden, every_unknown), seen_with(NearUnknown::Any, {})) << "pose " << pose;
+    counted_some += hidden.size();
+    counted_ignore += ignore.size();
+  }
+  EXPECT_GT(counted_some, 0u);
+  EXPECT_LT(counted_some, counted_ignore);  // some rays were blocked
+}
+
 TEST(FovScorer, NearUnknownModesReadAsTheyAreWritten) {
-  for (const NearUnknown mode : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any})
+  for (const NearUnknown mode : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any, NearUnknown::Hidden})
     EXPECT_EQ(parse_near_unknown(to_string(mode), "--near-unknown"), mode);
   EXPECT_THROW(parse_near_unknown("none", "--near-unknown"), UsageError);
 }
