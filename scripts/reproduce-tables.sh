@@ -32,8 +32,8 @@ for n in 1 2; do
   target_size=$([ $n = 1 ] && echo 0.08 || echo 0.06)  # the replica's victim's smallest extent
   # --far-voids-only: void cells nearer than the Kinect's minimum depth never become known, so
   # with them U would not fall to 0 as the paper's tables do (README, "One U for every command").
-  # --near-unknown ignore: the paper's U, which no near unknown cell cuts (with the default,
-  # hidden, paper-setting-1 ran to its view limit here; README, "Exploration over a scene suite").
+  # --near-unknown ignore: the paper's U, which no near unknown cell cuts (the default, hidden,
+  # learns from blank views, which the paper's loop did not; README, "Exploration over a scene suite").
   "$fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 \
     --arm data/arms/fvx-arm.urdf --target-size "$target_size" --seed 1 --max-views 15 --far-voids-only \
     --near-unknown ignore --format json -o "$out/$scene-session" \

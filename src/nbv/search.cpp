@@ -85,6 +85,9 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
     if (!a.frontier_voids[std::size_t(v.id)].enclosed())
       for (const map::VoxelKey& k : v.cells)
         if (grid.contains(k)) void_label[grid.index(k)] = v.id;
+  const std::vector<std::size_t> blocking = config.near_unknown == viewpoints::NearUnknown::Hidden
+                                                ? blocking_cells(hidden_void_cells)
+                                                : std::vector<std::size_t>{};
   for (const map::VoxelKey& k : hidden_void_cells)
     if (grid.contains(k)) void_label[grid.index(k)] = -1;
   any_hidden = !hidden_void_cells.empty();
@@ -109,12 +112,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
                                                         config.sensor.depth_min_m, config.count_near_void_cells);
   void_scorer->set_unknown_depth(config.unknown_depth_cells);
   void_scorer->set_near_unknown(config.near_unknown);
-  if (config.near_unknown == viewpoints::NearUnknown::Hidden) {
-    std::vector<std::size_t> hidden;
-    for (const map::VoxelKey& k : hidden_void_cells)
-      if (grid.contains(k)) hidden.push_back(grid.index(k));
-    void_scorer->set_blocking(hidden);
-  }
+  void_scorer->set_blocking(blocking);
   if (config.strategy == Strategy::Frontier) {
     for (const auto& c : a.frontier_clusters)
       if (!frontier_target || c.cells.size() > frontier_target->cells.size()) frontier_target = &c;
@@ -126,6 +124,26 @@ core::LargeVector<std::uint8_t> Search::void_mask() const {
   core::LargeVector<std::uint8_t> mask(void_label.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = void_label[i] >= 0;
   return mask;
+}
+
+std::vector<std::size_t> Search::blocking_cells(const std::vector<map::VoxelKey>& hidden_void_cells) const {
+  // A taken view left these cells unknown: something may hide in their voids, nearer than
+  // the minimum depth as well (a shelf's back wall), so the rule covers the whole void.
+  // Measured against blocking the hidden cells alone (README, "Exploration over a scene
+  // suite"): a higher AUC on every seed and the loop ending with utility 0 far more often.
+  std::vector<char> holds_hidden(a.void_clusters.size(), 0);
+  std::vector<std::size_t> blocking;
+  for (const map::VoxelKey& k : hidden_void_cells) {
+    if (!grid.contains(k)) continue;
+    const std::size_t i = grid.index(k);
+    blocking.push_back(i);
+    if (void_label[i] >= 0) holds_hidden[std::size_t(void_label[i])] = 1;
+  }
+  for (const auto& v : a.void_clusters)
+    if (holds_hidden[std::size_t(v.id)])
+      for (const map::VoxelKey& k : v.cells)
+        if (grid.contains(k)) blocking.push_back(grid.index(k));
+  return blocking;
 }
 
 frontier_voids::Analysis Search::visible_utility() const {

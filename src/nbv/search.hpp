@@ -106,6 +106,10 @@ struct Search {
 
   bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)
   core::LargeVector<std::uint8_t> void_mask() const;
+  /// NearUnknown::Hidden's blocking cells (grid indices): the hidden cells, and every cell of
+  /// a void (one a frontier touches) that holds a hidden cell. Read before the hidden cells
+  /// leave void_label.
+  std::vector<std::size_t> blocking_cells(const std::vector<map::VoxelKey>& hidden_void_cells) const;
   /// A copy of the analysis with each frontier-void's u_i counting only the void cells U
   /// counts (the hidden void cells left out).
   frontier_voids::Analysis visible_utility() const;

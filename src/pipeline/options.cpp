@@ -167,9 +167,9 @@ std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, con
           {"near-unknown", 0, "MODE", "what an unknown cell nearer than the sensor's minimum depth does to a ray of "
                                       "U: ignore (nothing), void (a void cell there leaves the ray "
                                       "counting nothing, as a surface hidden in it leaves the pixel without depth), "
-                                      "any (any unknown cell there) or hidden (the default: a void cell there that a view taken was "
-                                      "expected to reveal and left unknown, in explore and replay; a single search "
-                                      "has none)", nbv_echo + "/near_unknown"}};
+                                      "any (any unknown cell there) or hidden (the default: a void cell there in a void where a view "
+                                      "taken left cells it was expected to reveal unknown, in explore and replay; a "
+                                      "single search has none)", nbv_echo + "/near_unknown"}};
 }
 
 viewpoints::NearUnknown parse_near_unknown(const Args& args, viewpoints::NearUnknown fallback) {

@@ -109,9 +109,10 @@ struct Config {
   /// `void` raises the suite's coverage most but hides the closed box's view through its
   /// opening from nearer than the minimum depth, and the best view's U on the slambook map
   /// then varies by a factor of two from seed to seed. The default, `hidden`, applies the rule
-  /// only to the void cells a taken view left unknown (the loops' hidden cells, given to the
-  /// search): evidence that something hides there. A single search has none, so it counts as
-  /// `ignore` did; the loops gained on the suite and the replicas (measured against `ignore`).
+  /// only to the voids in which a taken view left cells unknown (the loops' hidden cells, given
+  /// to the search): evidence that something hides there. A single search has none, so it
+  /// counts as `ignore` did; the loops gained on the suite and the replicas (measured against
+  /// `ignore`).
   viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Hidden;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one

@@ -40,8 +40,9 @@ enum class NearUnknown {
   Void,    ///< a target cell (a void cell) there leaves the ray counting nothing
   Any,     ///< any unknown cell there leaves the ray counting nothing
   /// a blocking cell there (FovScorer::set_blocking: in the loops, a void cell a taken view
-  /// was expected to reveal and left unknown) leaves the ray counting nothing: the rule
-  /// applies where a view has shown that something hides in the void (nbv::Config's default)
+  /// was expected to reveal and left unknown, or any cell of its void) leaves the ray counting
+  /// nothing: the rule applies where a view has shown that something hides (nbv::Config's
+  /// default)
   Hidden,
 };
 const char* to_string(NearUnknown mode);

@@ -505,8 +505,9 @@ TEST(Nbv, HiddenVoidCellsLeaveAlgorithmOnesUtility) {
 }
 
 /// U of pose T on the closed box's search grid, cast independently of the search: targets are
-/// the void cells of voids a frontier touches except `hidden`, which block rays nearer than the
-/// minimum depth under `mode` == Hidden.
+/// the void cells of voids a frontier touches except `hidden`; under `mode` == Hidden the
+/// hidden cells and every cell of a void that holds one block rays nearer than the minimum
+/// depth.
 std::size_t U_with_hidden(const ClosedBox& box, const Config& c, const std::vector<map::VoxelKey>& hidden,
                           viewpoints::NearUnknown mode, const Eigen::Isometry3d& T) {
   const map::Stats stats = box.map.stats();
@@ -522,6 +523,14 @@ std::size_t U_with_hidden(const ClosedBox& box, const Config& c, const std::vect
       mask[grid.index(k)] = 0;
       blocking.push_back(grid.index(k));
     }
+  for (const auto& v : box.analysis.void_clusters) {
+    const bool holds_hidden = std::any_of(v.cells.begin(), v.cells.end(), [&](const map::VoxelKey& k) {
+      return std::binary_search(hidden.begin(), hidden.end(), k);
+    });
+    if (holds_hidden && !box.analysis.frontier_voids[std::size_t(v.id)].enclosed())
+      for (const map::VoxelKey& k : v.cells)
+        if (grid.contains(k)) blocking.push_back(grid.index(k));
+  }
   viewpoints::FovScorer scorer(grid, std::move(mask), viewpoints::ray_fan(c.sensor.intrinsics, c.ray_cols, c.ray_rows),
                                c.sensor.depth_max_m, c.sensor.depth_min_m, c.count_near_void_cells);
   scorer.set_near_unknown(mode);
@@ -530,11 +539,11 @@ std::size_t U_with_hidden(const ClosedBox& box, const Config& c, const std::vect
   return scorer.score(T, ws).targets_seen;
 }
 
-// --near-unknown hidden: the void cells a taken view left unknown (the loop's hidden cells)
-// block the rays that cross them nearer than the minimum depth. Hidden here: the cells of the
-// closed box's best view (ignore) nearer than 0.5 m, as if that view had come back blank
-// there. Every view then carries the U of an independent cast under the rule, and the old
-// best pose sees fewer void cells under it than with the rule off.
+// --near-unknown hidden: the void cells a taken view left unknown (the loop's hidden cells),
+// and every cell of their voids, block the rays that cross them nearer than the minimum depth.
+// Hidden here: the cells of the closed box's best view (ignore) nearer than 0.5 m, as if that
+// view had come back blank there. Every view then carries the U of an independent cast under
+// the rule, and the old best pose sees fewer void cells under it than with the rule off.
 TEST(Nbv, UnderHiddenTheVoidCellsAViewLeftUnknownBlockNearRays) {
   const ClosedBox& box = closed_box();
   Config config = coarse();
