@@ -150,6 +150,14 @@ std::set<std::size_t> oracle_seen(const RandomGrid& g, const Eigen::Vector3d& o,
   return seen;
 }
 
+/// A pose in the random grids' box (1.4 x 1.2 x 1.0 m), looking any way, rolled by up to 6 rad.
+Eigen::Isometry3d random_pose(std::mt19937& rng, std::uniform_real_distribution<double>& u) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
+  T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+  return T;
+}
+
 // On the known cells' own grid a pose sees many cells per word of the scorer's bits, which
 // it reads off in order; on a grid 340 times larger, few, which it sorts: both ascending.
 TEST(FovScorer, CountsTheDistinctTargetCellsTheRaysCross) {
@@ -169,9 +177,7 @@ TEST(FovScorer, CountsTheDistinctTargetCellsTheRaysCross) {
     FovScorer scorer(*g.grid, g.target, rays, depth_max);
     FovScorer::Workspace ws;
     for (int pose = 0; pose < (seed < 4 ? 20 : 6); ++pose) {  // the oracle tests every cell
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
-      T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+      const Eigen::Isometry3d T = random_pose(rng, u);
       std::set<std::size_t> expected;
       for (const auto& r : rays) {
         const auto s = oracle_seen(g, T.translation(), T.linear() * r, depth_max * r.norm());
@@ -271,9 +277,7 @@ TEST(FovScorer, UnknownDepthCountsOnlyTheFirstUnknownCellsOfEachRay) {
       FovScorer::Workspace ws;
       std::size_t counted = 0, counted_all = 0;
       for (int pose = 0; pose < 30; ++pose) {
-        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-        T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
-        T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+        const Eigen::Isometry3d T = random_pose(rng, u);
         std::set<std::size_t> expected;
         for (const auto& r : rays) {
           const auto s = oracle_seen(g, T.translation(), T.linear() * r, 0.9 * r.norm(), depth_min, T.linear().col(2), depth);
@@ -304,9 +308,7 @@ TEST(FovScorer, AnUnknownCellNearerThanTheMinimumDepthLeavesItsRayCountingNothin
   FovScorer::Workspace ws;
   std::map<NearUnknown, std::size_t> counted;
   for (int pose = 0; pose < 30; ++pose) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
-    T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+    const Eigen::Isometry3d T = random_pose(rng, u);
     std::vector<std::size_t> before;  // the previous mode's cells, a superset of this one's
     for (const NearUnknown mode : {NearUnknown::Ignore, NearUnknown::Void, NearUnknown::Any}) {
       FovScorer scorer(*g.grid, g.target, rays, 0.9, depth_min);
@@ -350,9 +352,7 @@ TEST(FovScorer, UnderHiddenOnlyTheBlockingCellsNearerThanTheMinimumDepthLeaveThe
   FovScorer::Workspace ws;
   std::size_t counted_some = 0, counted_ignore = 0;
   for (int pose = 0; pose < 30; ++pose) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() << 1.4 * u(rng), 1.2 * u(rng), 1.0 * u(rng);
-    T.linear() = look_along(Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5), 6.0 * u(rng));
+    const Eigen::Isometry3d T = random_pose(rng, u);
     auto seen_with = [&](NearUnknown mode, const std::set<std::size_t>& blocking) {
       FovScorer scorer(*g.grid, g.target, rays, 0.9, depth_min);
       scorer.set_near_unknown(mode);
