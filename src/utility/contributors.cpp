@@ -6,12 +6,13 @@ namespace fvx::utility {
 
 Contributors::List& Contributors::make(std::size_t cell) {
   std::uint32_t& slot = slot_[cell];
+  std::vector<List>& lists = lists_[stripe(cell)];
   if (slot == 0) {
-    FVX_ASSERT(lists_.size() < UINT32_MAX, "Contributors: more lists than a slot can name");
-    lists_.push_back(kNone);
-    slot = std::uint32_t(lists_.size());
+    FVX_ASSERT(lists.size() < UINT32_MAX, "Contributors: more lists than a slot can name");
+    lists.push_back(kNone);
+    slot = std::uint32_t(lists.size());
   }
-  return lists_[slot - 1];
+  return lists[slot - 1];
 }
 
 bool Contributors::operator==(const Contributors& other) const {

@@ -1,6 +1,7 @@
 #include "fvx/utility/utility.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -39,6 +40,9 @@ namespace {
 /// point, an integer, so that sums do not depend on the order of addition or the number of
 /// threads) and, per cell, its kContributors largest contributors (Field::contributors),
 /// ordered by rank in `order`. Both are the same whatever order frontier-voids arrive in.
+/// A thread adds to the cells of one stripe (Contributors::stripe) at a time under that
+/// stripe's lock: with one lock for the whole field, the adds (a quarter of the work on the
+/// paper replicas) ran one thread at a time.
 struct Shared {
   /// The integer sums, each held in the bytes of the double the field reports (read and
   /// written through memcpy), so that the field takes no second grid-sized array: on a
@@ -46,7 +50,7 @@ struct Shared {
   core::LargeVector<double> util_cells;
   Contributors contributors;
   std::vector<std::uint32_t> rank;  ///< per frontier-void: its place in `order`
-  std::mutex mutex;
+  std::array<std::mutex, Contributors::kStripes> stripe_locks;
 };
 
 /// One thread's scratch for the frontier-void it is tracing: how often its rays passed each
@@ -60,24 +64,41 @@ struct Worker {
   std::vector<std::size_t> wrapped;        ///< a cell per 255 passes its byte spilled
   std::vector<std::size_t> touched;
   std::size_t vectors = 0;
+  std::size_t first_stripe = 0;  ///< where this thread's flushes start, so threads start apart
+  /// `touched` and `wrapped` sorted by stripe (counting sort), and where each stripe starts.
+  std::vector<std::size_t> by_stripe;
+  std::array<std::size_t, Contributors::kStripes + 1> touched_at{}, wrapped_at{};
 };
 
-/// Adds frontier-void `fv` (its vectors weighing `weight` each) to the shared field at the
-/// cells `w` passed, and clears `w` for the next one.
-void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
-  const std::lock_guard<std::mutex> lock(shared.mutex);
+/// Orders `cells` by stripe into `out` (appended); `at[s]` is where stripe s begins in `out`.
+void sort_by_stripe(const std::vector<std::size_t>& cells, std::vector<std::size_t>& out,
+                    std::array<std::size_t, Contributors::kStripes + 1>& at) {
+  at.fill(0);
+  for (const std::size_t c : cells) ++at[Contributors::stripe(c) + 1];
+  at[0] = out.size();
+  for (std::size_t s = 1; s <= Contributors::kStripes; ++s) at[s] += at[s - 1];
+  out.resize(at[Contributors::kStripes]);
+  std::array<std::size_t, Contributors::kStripes> next;
+  std::copy(at.begin(), at.end() - 1, next.begin());
+  for (const std::size_t c : cells) out[next[Contributors::stripe(c)]++] = c;
+}
+
+/// Adds to `sum` (a cell's fixed-point sum, held in a double's bytes) `add`.
+void add_to(double& cell, std::uint64_t add) {
+  std::uint64_t sum;
+  std::memcpy(&sum, &cell, sizeof sum);
+  sum += add;
+  std::memcpy(&cell, &sum, sizeof sum);
+}
+
+/// Adds the cells of `w`'s frontier-void `fv` in one stripe to the shared field.
+void flush_stripe(Worker& w, std::size_t stripe, std::uint64_t weight, std::int32_t fv, Shared& shared) {
   const std::uint32_t rank = shared.rank[std::size_t(fv)];
-  for (const std::size_t index : w.wrapped) {  // integer sums: the order of additions is free
-    std::uint64_t sum;
-    std::memcpy(&sum, &shared.util_cells[index], sizeof sum);
-    sum += weight * 255;
-    std::memcpy(&shared.util_cells[index], &sum, sizeof sum);
-  }
-  for (const std::size_t index : w.touched) {
-    std::uint64_t sum;
-    std::memcpy(&sum, &shared.util_cells[index], sizeof sum);
-    sum += weight * w.passes[index];
-    std::memcpy(&shared.util_cells[index], &sum, sizeof sum);
+  for (std::size_t j = w.wrapped_at[stripe]; j < w.wrapped_at[stripe + 1]; ++j)  // integer sums: any order
+    add_to(shared.util_cells[w.by_stripe[j]], weight * 255);
+  for (std::size_t j = w.touched_at[stripe]; j < w.touched_at[stripe + 1]; ++j) {
+    const std::size_t index = w.by_stripe[j];
+    add_to(shared.util_cells[index], weight * w.passes[index]);
     w.passes[index] = 0;
     // Frontier-voids arrive about in rank order: most cells already hold four better ones.
     const std::int32_t last = shared.contributors[index].back();
@@ -89,6 +110,20 @@ void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
       std::swap(slot, carry);
       if (carry < 0) break;
     }
+  }
+}
+
+/// Adds frontier-void `fv` (its vectors weighing `weight` each) to the shared field at the
+/// cells `w` passed, stripe by stripe, and clears `w` for the next one.
+void flush(Worker& w, std::uint64_t weight, std::int32_t fv, Shared& shared) {
+  w.by_stripe.clear();
+  sort_by_stripe(w.touched, w.by_stripe, w.touched_at);
+  sort_by_stripe(w.wrapped, w.by_stripe, w.wrapped_at);
+  for (std::size_t k = 0; k < Contributors::kStripes; ++k) {
+    const std::size_t stripe = (w.first_stripe + k) % Contributors::kStripes;
+    if (w.touched_at[stripe] == w.touched_at[stripe + 1] && w.wrapped_at[stripe] == w.wrapped_at[stripe + 1]) continue;
+    const std::lock_guard<std::mutex> lock(shared.stripe_locks[stripe]);
+    flush_stripe(w, stripe, weight, fv, shared);
   }
   w.touched.clear();
   w.wrapped.clear();
@@ -337,6 +372,7 @@ Field accumulate(const map::DenseGrid& grid, const frontier_voids::Analysis& a, 
     read_box = Eigen::AlignedBox3d(config.read_box_m->min() - cell, config.read_box_m->max() + cell);
   }
   std::vector<Worker> workers(threads);
+  for (std::size_t t = 0; t < threads; ++t) workers[t].first_stripe = t * Contributors::kStripes / threads;
   std::atomic<std::size_t> next{0};
   auto work = [&](Worker& w, bool report) {
     w.passes.assign(grid.cell_count(), 0);

@@ -71,14 +71,22 @@ constexpr std::size_t kMinSamples = 8;
 /// unused slots, largest first. Kept only for the cells some vector passed, behind a 4-byte
 /// slot per cell: a list per cell took 16 bytes on every cell of the grid (176 MB filled on
 /// the 11 M-cell grid of the slambook frames at 2.5 cm, a seventh of that search's time).
+/// The lists are kept per stripe of cells (stripe()), so that threads may fill cells of
+/// different stripes at once.
 class Contributors {
  public:
   using List = std::array<std::int32_t, kContributors>;
+  static constexpr std::size_t kStripes = 64;
+  /// Stripes of 4 096 consecutive cells (a few rows of a grid), dealt round-robin.
+  static std::size_t stripe(std::size_t cell) { return (cell >> 12) % kStripes; }
   explicit Contributors(std::size_t cells = 0) : slot_(cells, 0) {}
   std::size_t size() const { return slot_.size(); }
   /// The list of `cell`: −1 in every slot when no vector passed it.
-  const List& operator[](std::size_t cell) const { return slot_[cell] ? lists_[slot_[cell] - 1] : kNone; }
-  /// The list of `cell` to fill, made (all −1) on first use.
+  const List& operator[](std::size_t cell) const {
+    return slot_[cell] ? lists_[stripe(cell)][slot_[cell] - 1] : kNone;
+  }
+  /// The list of `cell` to fill, made (all −1) on first use. Threads may call it at once
+  /// for cells of different stripes.
   List& make(std::size_t cell);
   /// Cell by cell.
   bool operator==(const Contributors& other) const;
@@ -86,8 +94,8 @@ class Contributors {
 
  private:
   static constexpr List kNone{-1, -1, -1, -1};
-  core::LargeVector<std::uint32_t> slot_;  ///< per cell: 0, or 1 + its index in lists_
-  std::vector<List> lists_;
+  core::LargeVector<std::uint32_t> slot_;  ///< per cell: 0, or 1 + its index in its stripe's list
+  std::array<std::vector<List>, kStripes> lists_;
 };
 
 struct Field {
