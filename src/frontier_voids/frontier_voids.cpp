@@ -96,6 +96,7 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
   if (void_set) {
     a.void_cells = void_set->cells(map, a.bounds_m);
     a.hull_faces = void_set->hull().planes.size();
+    a.hull = void_set->hull();
   }
   cluster_and_pair(map, a, void_set != nullptr, config, min_void_width_cells);
   return a;
@@ -124,6 +125,7 @@ Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::Al
   a.frontier_cells = map::keys_within(map, frontier_cells.get(), a.bounds_m);
   a.void_cells = map::keys_within(map, std::move(void_cells), a.bounds_m);
   a.hull_faces = hull.planes.size();
+  a.hull = std::move(hull);
   cluster_and_pair(map, a, with_voids, config, min_void_width_cells);
   return a;
 }

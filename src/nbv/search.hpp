@@ -105,6 +105,8 @@ struct Search {
   mutable std::vector<viewpoints::FovScorer::Workspace> workspaces;
 
   bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)
+  /// Config::exterior_free: the grid's unknown cells outside the voids' hull become free.
+  void free_exterior();
   core::LargeVector<std::uint8_t> void_mask() const;
   /// NearUnknown::Hidden's blocking cells (grid indices): the hidden cells, and every cell of
   /// a void (one a frontier touches) that holds a hidden cell. Read before the hidden cells

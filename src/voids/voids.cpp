@@ -208,12 +208,21 @@ std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
                                       const std::optional<Eigen::AlignedBox3d>& hull_box_m) {
   hull = convex_hull(column_extremes(grid, hull_box_m));
   if (hull.empty()) return {};
+  const core::LargeVector<std::uint8_t> inside = inside_hull(grid, hull);
+  std::vector<map::VoxelKey> out;
+  for (std::size_t i = 0; i < inside.size(); ++i)
+    if (inside[i] && grid.state_at(i) == map::VoxelState::Unknown) out.push_back(grid.key(i));
+  return out;
+}
+
+core::LargeVector<std::uint8_t> inside_hull(const map::DenseGrid& grid, const Hull& hull) {
+  core::LargeVector<std::uint8_t> inside(grid.cell_count(), 0);
+  if (hull.empty()) return inside;
   const Eigen::Vector3i n = grid.size();
   const int lo[3] = {grid.min_key().x - 32768, grid.min_key().y - 32768, grid.min_key().z - 32768};
   const double R = grid.resolution_m();
   const auto [x0, x1] = cell_range(hull.bounds_m.min().x(), hull.bounds_m.max().x(), R);
   const auto [y0, y1] = cell_range(hull.bounds_m.min().y(), hull.bounds_m.max().y(), R);
-  core::LargeVector<std::uint8_t> inside(grid.cell_count(), 0);
   for (int y = std::max(y0, lo[1]); y <= std::min(y1, lo[1] + n.y() - 1); ++y)
     for (int x = std::max(x0, lo[0]); x <= std::min(x1, lo[0] + n.x() - 1); ++x) {
       const auto range = hull.z_range((x + 0.5) * R, (y + 0.5) * R);
@@ -223,13 +232,10 @@ std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
       for (int z = std::max(z0, lo[2]); z <= std::min(z1, lo[2] + n.z() - 1); ++z) {
         const std::size_t i = (std::size_t(z - lo[2]) * std::size_t(n.y()) + std::size_t(y - lo[1])) * std::size_t(n.x()) +
                               std::size_t(x - lo[0]);
-        inside[i] = grid.state_at(i) == map::VoxelState::Unknown;
+        inside[i] = 1;
       }
     }
-  std::vector<map::VoxelKey> out;
-  for (std::size_t i = 0; i < inside.size(); ++i)
-    if (inside[i]) out.push_back(grid.key(i));
-  return out;
+  return inside;
 }
 
 void VoidSet::rebuild(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& hull_box_m) {

@@ -74,13 +74,15 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const TempDir dir;
   const RunResult e = run_fvx(dir, "explore" + kReplayScene + kArm +
                                        " --void-hull search-space --unknown-depth 1 --near-unknown any --coarse-rays 20x15"
-                                       " --max-views 3 --format json -o session");
+                                       " --exterior free --max-views 3 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["hull_in_bounds"], true);
   EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["unknown_depth_cells"], 1);
   EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["near_unknown"], "any");
+  EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["exterior_free"], true);
   const session::Manifest m = session::read_manifest(dir / "session");
+  EXPECT_TRUE(m.exterior_free);
   EXPECT_TRUE(m.hull_in_bounds);
   EXPECT_EQ(m.unknown_depth_cells, 1);
   EXPECT_EQ(m.near_unknown, "any");
@@ -91,6 +93,7 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const json replayed = json::parse(r.out);
   EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["coarse_rays"], json({20, 15}));
   EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["near_unknown"], "any");
+  EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["exterior_free"], true);
   ASSERT_EQ(replayed["results"]["rows"].size(), explored["results"]["rows"].size());
   for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
     const json& a = explored["results"]["rows"][i];
@@ -104,7 +107,8 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   ASSERT_EQ(whole.status, 0) << whole.err;
   EXPECT_GT(json::parse(whole.out)["results"]["rows"][0]["map_void_cells"].get<int>(),
             explored["results"]["rows"][0]["map_void_cells"].get<int>());
-  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1", "--coarse-rays 20", "--near-unknown none"}) {
+  for (const std::string bad : {"--void-hull walls", "--unknown-depth -1", "--coarse-rays 20", "--near-unknown none",
+                                "--exterior air"}) {
     const RunResult b = run_fvx(dir, "replay session -o out3 " + bad);
     EXPECT_EQ(b.status, 2) << bad;
     EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << b.err;

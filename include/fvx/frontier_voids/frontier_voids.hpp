@@ -37,6 +37,7 @@ struct Analysis {
   std::vector<voids::VoidCluster> void_clusters;
   std::vector<FrontierVoid> frontier_voids;           ///< one per void cluster
   std::size_t hull_faces = 0;                         ///< planes of the hull the voids lie in
+  voids::Hull hull;                                   ///< that hull (empty without voids)
   std::vector<std::string> warnings;                  ///< why a result is empty
 };
 

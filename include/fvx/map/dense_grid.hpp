@@ -57,6 +57,8 @@ class DenseGrid {
   /// Precondition: contains(k).
   VoxelState state(const VoxelKey& k) const { return VoxelState(states_[index(k)]); }
   VoxelState state_at(std::size_t index) const { return VoxelState(states_[index]); }
+  /// Changes one cell's state in this copy (the map is not touched).
+  void set_state_at(std::size_t index, VoxelState state) { states_[index] = std::uint8_t(state); }
   Eigen::Vector3d center_of(const VoxelKey& k) const {
     return {(double(k.x) - 32768 + 0.5) * resolution_m_, (double(k.y) - 32768 + 0.5) * resolution_m_,
             (double(k.z) - 32768 + 0.5) * resolution_m_};

@@ -114,6 +114,14 @@ struct Config {
   /// counts as `ignore` did; the loops gained on the suite and the replicas (measured against
   /// `ignore`).
   viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Hidden;
+  /// Unknown cells outside the voids' hull (frontier_voids::Analysis::hull) count as free for
+  /// the search: Algorithm 1's rays pass them, a viewpoint may stand in them (with the same
+  /// clearance from occupied cells), and without view bounds the sensor may go anywhere in
+  /// the arm's reach, not only within the known cells' box. What MoveIt's collision checking
+  /// assumes of unknown space. false (the paper's): the eye stands in a known free cell. On
+  /// scenes without walls a Kinect never clears the air above them (no return, no ray), and
+  /// the views that look into open containers from above stand in that air.
+  bool exterior_free = false;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
   /// (utility/utility.hpp).

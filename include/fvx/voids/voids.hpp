@@ -31,6 +31,9 @@ struct Hull {
 /// The hull of `points` (CGAL's convex_hull_3).
 Hull convex_hull(const std::vector<Eigen::Vector3d>& points);
 
+/// Per cell of `grid`: 1 when its centre lies inside `hull` (the test void_cells applies).
+core::LargeVector<std::uint8_t> inside_hull(const map::DenseGrid& grid, const Hull& hull);
+
 /// The void cells of `grid` (unknown cells inside the hull of its occupied cell centres), in
 /// key order, from scratch, and that hull: what VoidSet::rebuild finds when the grid holds
 /// every known cell of the map. The hull is built from each column's lowest and highest

@@ -578,6 +578,74 @@ TEST(Nbv, TheSensorStaysInsideTheViewBounds) {
   for (const View& v : r.views) EXPECT_TRUE(config.view_bounds_m->contains(v.T_world_sensor.translation()));
 }
 
+// The closed box scanned from three sides at its own height: the air above it stays
+// unknown (a ray that meets nothing records nothing), so no known free cell looks down
+// through the lid's opening. With Config::exterior_free the unknown cells outside the voids'
+// hull count as free: views may stand there, never inside the hull, still clear of occupied
+// cells and reachable, and they see far more of the void than the known free cells allow.
+TEST(Nbv, WithTheExteriorFreeViewsMayStandInTheUnknownAirOutsideTheHull) {
+  map::OccupancyMap map(0.02);
+  const Eigen::Vector3d centre(0.77, -0.02, 0.2);
+  std::vector<Eigen::Isometry3d> views;
+  for (const double a : {-M_PI / 2, M_PI, M_PI / 2}) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = centre + Eigen::Vector3d(1.0 * std::cos(a), 1.0 * std::sin(a), 0.05);
+    T.linear() = viewpoints::look_along(centre - T.translation(), 0.0);
+    views.push_back(T);
+  }
+  test::integrate_views(map, sim::builtin_scene("closed-box"), views);
+  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, std::nullopt, voids::ClusterConfig{});
+  ASSERT_GT(a.void_cells.size(), 1000u);
+  ASSERT_FALSE(a.hull.empty());
+  const Arm arm;
+  const Reach reach = arm.reach({0.2, 0.0, 0.0});
+  Config paper = coarse();
+  paper.top = 50;
+  Config exterior = paper;
+  exterior.exterior_free = true;
+  const Result known = select(map, a, reach, paper), air = select(map, a, reach, exterior);
+  ASSERT_FALSE(air.views.empty()) << air.reason;
+  for (const View& v : known.views)
+    EXPECT_EQ(map.state(*map.key_of(v.T_world_sensor.translation())), map::VoxelState::Free);
+  const auto occupied = map.occupied_centers();
+  std::size_t in_unknown = 0;
+  for (const View& v : air.views) {
+    const Eigen::Vector3d p = v.T_world_sensor.translation();
+    const std::optional<map::VoxelKey> k = map.key_of(p);
+    ASSERT_TRUE(k);
+    if (map.state(*k) == map::VoxelState::Unknown) {
+      ++in_unknown;
+      EXPECT_FALSE(a.hull.contains(map.center_of(*k))) << "an eye in the hull, where voids lie";
+    } else {
+      EXPECT_EQ(map.state(*k), map::VoxelState::Free);
+    }
+    double nearest = INFINITY;
+    for (const auto& o : occupied) nearest = std::min(nearest, (o.cast<double>() - p).norm());
+    EXPECT_GT(nearest, exterior.clearance_m - 1e-6);
+    EXPECT_TRUE(arm.capmap.reachable(reach.T_world_base, p, v.T_world_sensor.linear().col(2)));
+    EXPECT_EQ(v.joints_rad.size(), arm.arm.dof());
+    for (const map::VoxelKey& c : v.seen_void_cells)  // the voids are the analysis' own
+      EXPECT_TRUE(std::binary_search(a.void_cells.begin(), a.void_cells.end(), c));
+  }
+  EXPECT_GT(in_unknown, 0u);
+  // Every pose the exhaustive strategy scores in known free cells it scores with the air as
+  // well, and with the same U (the scorer neither counts nor stops at unknown cells outside
+  // the voids): the best view can only gain. Unscreened, so that each pose's U is the full fan's.
+  paper.strategy = exterior.strategy = Strategy::Exhaustive;
+  paper.coarse_ray_cols = paper.coarse_ray_rows = exterior.coarse_ray_cols = exterior.coarse_ray_rows = 0;
+  paper.ray_cols = exterior.ray_cols = 16;  // 66 000 poses with the air: a coarse fan keeps it short
+  paper.ray_rows = exterior.ray_rows = 12;
+  const Result all_known = select(map, a, reach, paper), all_air = select(map, a, reach, exterior);
+  ASSERT_FALSE(all_known.views.empty()) << all_known.reason;
+  ASSERT_FALSE(all_air.views.empty()) << all_air.reason;
+  EXPECT_GT(all_air.poses_scored, all_known.poses_scored);
+  EXPECT_GE(all_air.views.front().void_cells_seen, all_known.views.front().void_cells_seen);
+  std::printf("frontier-void best U: %zu known free, %zu with the air; exhaustive: %zu, %zu (%zu, %zu poses)\n",
+              known.views.empty() ? 0 : known.views.front().void_cells_seen, air.views.front().void_cells_seen,
+              all_known.views.front().void_cells_seen, all_air.views.front().void_cells_seen,
+              all_known.poses_scored, all_air.poses_scored);
+}
+
 TEST(Nbv, TheFrontierStrategyViewsTheLargestFrontierCluster) {
   const ClosedBox& box = closed_box();
   Config config = coarse();
