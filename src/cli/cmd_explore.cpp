@@ -89,7 +89,7 @@ session::ExploreConfig parse_config(const Args& args) {
   pc.hull_in_bounds = parse_void_hull(args, false);
   args.read("unknown-depth", nc.unknown_depth_cells);
   nc.near_unknown = pipeline::parse_near_unknown(args, nc.near_unknown);
-  nc.exterior_free = pipeline::parse_exterior(args, nc.exterior_free);
+  nc.exterior = pipeline::parse_exterior(args, nc.exterior);
   if (args.has("no-return")) {
     const std::string mode = args.get("no-return");
     if (mode != "none" && mode != "free") throw UsageError("--no-return '" + mode + "': expected none or free");

@@ -185,7 +185,7 @@ void apply_flags(const Args& args, const Inputs& inputs, const ArmInputs& arm_in
   if (args.has("discretize")) pc.discretize = true;  // a session's recorded choice otherwise
   args.read("unknown-depth", nc.unknown_depth_cells);
   nc.near_unknown = pipeline::parse_near_unknown(args, nc.near_unknown);
-  nc.exterior_free = pipeline::parse_exterior(args, nc.exterior_free);
+  nc.exterior = pipeline::parse_exterior(args, nc.exterior);
   if (args.has("bounds")) pc.bounds_m = parse_bounds(args);
   if (args.has("view-bounds")) nc.view_bounds_m = parse_bounds(args, "view-bounds");
   args.read("seed", nc.seed);

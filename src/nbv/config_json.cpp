@@ -28,7 +28,7 @@ Json config_json(const Config& c) {
           {"count_near_void_cells", c.count_near_void_cells},
           {"unknown_depth_cells", c.unknown_depth_cells},
           {"near_unknown", viewpoints::to_string(c.near_unknown)},
-          {"exterior_free", c.exterior_free},
+          {"exterior", to_string(c.exterior)},
           {"accumulation", utility::to_string(c.accumulation)},
           {"max_utility_vectors", c.max_utility_vectors},
           {"top", c.top},

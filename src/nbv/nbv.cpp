@@ -27,6 +27,21 @@ Strategy parse_strategy(const std::string& name, const std::string& what) {
   throw UsageError(what + " '" + name + "': expected frontier-void, exhaustive, frontier or random");
 }
 
+const char* to_string(Exterior mode) {
+  switch (mode) {
+    case Exterior::Unknown: return "unknown";
+    case Exterior::View: return "view";
+    case Exterior::Free: return "free";
+  }
+  return "?";
+}
+
+Exterior parse_exterior(const std::string& name, const std::string& what) {
+  for (const Exterior m : {Exterior::Unknown, Exterior::View, Exterior::Free})
+    if (name == to_string(m)) return m;
+  throw UsageError(what + " '" + name + "': expected unknown, view or free");
+}
+
 std::vector<std::string> Config::validate() const {
   std::vector<std::string> problems = sensor.validate();
   if (ray_cols < 1 || ray_rows < 1) problems.push_back("ray_cols and ray_rows must be >= 1");

@@ -21,21 +21,21 @@ Eigen::AlignedBox3d known_box(const map::OccupancyMap& map) {
 
 /// Rays run between the view bounds and the search space: the box around both, within the
 /// known cells (beyond them every cell is unknown and no viewpoint can be).
-/// With Config::exterior_free the unknown cells around them may hold viewpoints: the box is
-/// then not cut to the known cells.
+/// With Config::exterior view or free the unknown cells around them may hold viewpoints: the
+/// box is then not cut to the known cells.
 Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
-                             const Eigen::AlignedBox3d& view_bounds, bool exterior_free) {
+                             const Eigen::AlignedBox3d& view_bounds, Exterior exterior) {
   if (known.isEmpty()) return known;
   const Eigen::AlignedBox3d around = search_space.merged(view_bounds);
-  return exterior_free ? around : around.intersection(known);
+  return exterior != Exterior::Unknown ? around : around.intersection(known);
 }
 
 /// The sensor's box without --view-bounds: the known cells' box and, when unknown cells
-/// outside the hull count as free (Config::exterior_free), the arm's reach as well.
+/// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well.
 Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const std::optional<Reach>& reach,
                                         const Config& config) {
   if (config.view_bounds_m) return *config.view_bounds_m;
-  if (!config.exterior_free || known.isEmpty() || !reach || !reach->capmap) return known;
+  if (config.exterior == Exterior::Unknown || known.isEmpty() || !reach || !reach->capmap) return known;
   const Eigen::AlignedBox3d base = reach->capmap->reachable_box_base();
   Eigen::AlignedBox3d box = known;
   if (!base.isEmpty())
@@ -92,8 +92,8 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       known_m(known_box(map_in)),
       view_bounds_m(default_view_bounds(known_m, reach_in, config_in)),
       candidate_box_m(candidate_box(view_bounds_m, reach_in)),
-      grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m, config_in.exterior_free)) {
-  if (config.exterior_free) free_exterior();
+      grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m, config_in.exterior)) {
+  if (config.exterior != Exterior::Unknown) mark_exterior();
   // Only voids a frontier touches count: an enclosed void (inside a closed box or a solid)
   // has no free cell beside it, so no view can see into it (paper §IV-B pairs voids with
   // frontiers for this reason).
@@ -137,11 +137,15 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   }
 }
 
-void Search::free_exterior() {
+void Search::mark_exterior() {
   // Outside the hull no void lies: what the map does not know there is taken for air.
   const core::LargeVector<std::uint8_t> inside = voids::inside_hull(grid, a.hull);
-  for (std::size_t i = 0; i < inside.size(); ++i)
-    if (!inside[i] && grid.state_at(i) == map::VoxelState::Unknown) grid.set_state_at(i, map::VoxelState::Free);
+  exterior_view.assign(grid.cell_count(), 0);
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    if (inside[i] || grid.state_at(i) != map::VoxelState::Unknown) continue;
+    exterior_view[i] = 1;
+    if (config.exterior == Exterior::Free) grid.set_state_at(i, map::VoxelState::Free);
+  }
 }
 
 core::LargeVector<std::uint8_t> Search::void_mask() const {
@@ -194,7 +198,8 @@ Eigen::Matrix3d Search::snap_to_reach(const Eigen::Vector3d& p_world, const Eige
 }
 
 bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const {
-  if (!grid.contains(cell) || grid.state(cell) != map::VoxelState::Free) {
+  if (!grid.contains(cell) ||
+      (grid.state(cell) != map::VoxelState::Free && !(exterior_view.size() && exterior_view[grid.index(cell)]))) {
     ++pruning.not_free;
     return false;
   }

@@ -105,8 +105,9 @@ struct Search {
   mutable std::vector<viewpoints::FovScorer::Workspace> workspaces;
 
   bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)
-  /// Config::exterior_free: the grid's unknown cells outside the voids' hull become free.
-  void free_exterior();
+  /// Config::exterior: marks the grid's unknown cells outside the voids' hull in
+  /// exterior_view (and, with Exterior::Free, makes them free).
+  void mark_exterior();
   core::LargeVector<std::uint8_t> void_mask() const;
   /// NearUnknown::Hidden's blocking cells (grid indices): the hidden cells, and every cell of
   /// a void (one a frontier touches) that holds a hidden cell. Read before the hidden cells
@@ -135,6 +136,9 @@ struct Search {
   core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
   /// Per grid cell: to the nearest occupied cell, cells²; +infinity beyond the clearance.
   core::LargeVector<float> occupied_distance_sq;
+  /// Per cell, 1 where a viewpoint may stand in an unknown cell outside the voids' hull
+  /// (Config::exterior); empty with Exterior::Unknown.
+  core::LargeVector<std::uint8_t> exterior_view;
   std::vector<Eigen::Vector3d> rays_sensor;
   std::vector<Eigen::Vector3d> rays_coarse;  ///< screen_rays(); empty: off
   std::vector<Eigen::Vector3d> rays_prescreen;  ///< prescreen_rays(); empty: none

@@ -125,7 +125,7 @@ nbv::Config read_search_options(const Args& args) {
   args.read("rolls", config.exhaustive_rolls);
   config.count_near_void_cells = parse_near_voids(args, true);
   config.near_unknown = parse_near_unknown(args, config.near_unknown);
-  config.exterior_free = parse_exterior(args, config.exterior_free);
+  config.exterior = parse_exterior(args, config.exterior);
   config.view_bounds_m = parse_bounds(args, "view-bounds");
   args.read("seed", config.seed);
   args.read("threads", config.threads);
@@ -172,16 +172,14 @@ std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, con
                                       "taken left cells it was expected to reveal unknown, in explore and replay; a "
                                       "single search has none)", nbv_echo + "/near_unknown"},
           {"exterior", 0, "MODE", "unknown cells outside the voids' hull: unknown (default, the paper's: the "
-                                  "sensor stands in a known free cell) or free (taken for air, as MoveIt's "
-                                  "collision checking takes unknown space: utility rays pass them and viewpoints "
-                                  "may stand in them, anywhere in the arm's reach)", nbv_echo + "/exterior_free"}};
+                                  "sensor stands in a known free cell), view (taken for air, as MoveIt's collision "
+                                  "checking takes unknown space: viewpoints may stand in them, anywhere in the "
+                                  "arm's reach) or free (view, and Algorithm 1's rays pass them)",
+           nbv_echo + "/exterior"}};
 }
 
-bool parse_exterior(const Args& args, bool fallback) {
-  if (!args.has("exterior")) return fallback;
-  const std::string mode = args.get("exterior");
-  if (mode != "unknown" && mode != "free") throw UsageError("--exterior '" + mode + "': expected unknown or free");
-  return mode == "free";
+nbv::Exterior parse_exterior(const Args& args, nbv::Exterior fallback) {
+  return args.has("exterior") ? nbv::parse_exterior(args.get("exterior"), "--exterior") : fallback;
 }
 
 viewpoints::NearUnknown parse_near_unknown(const Args& args, viewpoints::NearUnknown fallback) {

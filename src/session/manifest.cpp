@@ -108,7 +108,7 @@ void write_manifest(const std::string& dir, const Manifest& m) {
   j["unknown_depth_cells"] = m.unknown_depth_cells;
   j["near_unknown"] = m.near_unknown;
   j["clear_beyond_range"] = m.clear_beyond_range;
-  j["exterior_free"] = m.exterior_free;
+  j["exterior"] = m.exterior;
   j["discretize"] = m.discretize;
   j["accumulation"] = m.accumulation;
   j["max_utility_vectors"] = m.max_utility_vectors;
@@ -137,13 +137,20 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
   flag("near_voids", m.near_voids);
   flag("hull_in_bounds", m.hull_in_bounds);
   flag("clear_beyond_range", m.clear_beyond_range);
-  flag("exterior_free", m.exterior_free);
   flag("discretize", m.discretize);
   if (j.contains("target_size_m")) {
     m.target_size_m = r.number(j, "target_size_m");
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
   }
   if (j.contains("unknown_depth_cells")) m.unknown_depth_cells = int(r.integer(j, "unknown_depth_cells", 0, 1000));
+  if (j.contains("exterior")) {
+    m.exterior = r.text(j, "exterior");
+    try {  // read as replay will read it
+      nbv::parse_exterior(m.exterior, "'exterior'");
+    } catch (const UsageError& e) {
+      r.fail(e.what());
+    }
+  }
   if (j.contains("near_unknown")) {
     m.near_unknown = r.text(j, "near_unknown");
     try {  // the modes' names are viewpoints', read as replay will read them
@@ -287,7 +294,7 @@ Manifest explore_manifest(const ExploreConfig& config, const std::string& scene,
   m.hull_in_bounds = pc.hull_in_bounds;
   m.unknown_depth_cells = nc.unknown_depth_cells;
   m.near_unknown = viewpoints::to_string(nc.near_unknown);
-  m.exterior_free = nc.exterior_free;
+  m.exterior = nbv::to_string(nc.exterior);
   m.clear_beyond_range = pc.clear_beyond_range;
   m.discretize = pc.discretize;
   m.accumulation = utility::to_string(nc.accumulation);

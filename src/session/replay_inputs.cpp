@@ -28,7 +28,7 @@ void apply_manifest(const Manifest& m, const std::string& dir, ReplayConfig& con
   pc.discretize = m.discretize;
   nc.unknown_depth_cells = m.unknown_depth_cells;
   nc.near_unknown = viewpoints::parse_near_unknown(m.near_unknown, dir + "/manifest.json: near_unknown");
-  nc.exterior_free = m.exterior_free;
+  nc.exterior = nbv::parse_exterior(m.exterior, dir + "/manifest.json: exterior");
   nc.accumulation = utility::parse_accumulation(m.accumulation, dir + "/manifest.json: accumulation");
   nc.max_utility_vectors = std::size_t(m.max_utility_vectors);
   nc.coarse_ray_cols = m.coarse_ray_cols;

@@ -74,15 +74,15 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const TempDir dir;
   const RunResult e = run_fvx(dir, "explore" + kReplayScene + kArm +
                                        " --void-hull search-space --unknown-depth 1 --near-unknown any --coarse-rays 20x15"
-                                       " --exterior free --max-views 3 --format json -o session");
+                                       " --exterior view --max-views 3 --format json -o session");
   ASSERT_EQ(e.status, 0) << e.err;
   const json explored = json::parse(e.out);
   EXPECT_EQ(explored["config"]["pipeline"]["hull_in_bounds"], true);
   EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["unknown_depth_cells"], 1);
   EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["near_unknown"], "any");
-  EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["exterior_free"], true);
+  EXPECT_EQ(explored["config"]["pipeline"]["nbv"]["exterior"], "view");
   const session::Manifest m = session::read_manifest(dir / "session");
-  EXPECT_TRUE(m.exterior_free);
+  EXPECT_EQ(m.exterior, "view");
   EXPECT_TRUE(m.hull_in_bounds);
   EXPECT_EQ(m.unknown_depth_cells, 1);
   EXPECT_EQ(m.near_unknown, "any");
@@ -93,7 +93,7 @@ TEST(CliReplay, TheVoidHullAndUnknownDepthAreRecordedAndReplayed) {
   const json replayed = json::parse(r.out);
   EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["coarse_rays"], json({20, 15}));
   EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["near_unknown"], "any");
-  EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["exterior_free"], true);
+  EXPECT_EQ(replayed["config"]["pipeline"]["nbv"]["exterior"], "view");
   ASSERT_EQ(replayed["results"]["rows"].size(), explored["results"]["rows"].size());
   for (std::size_t i = 0; i < replayed["results"]["rows"].size(); ++i) {
     const json& a = explored["results"]["rows"][i];

@@ -45,6 +45,22 @@ struct Reach {
   capmap::IkConfig ik;
 };
 
+/// Unknown cells outside the voids' hull (frontier_voids::Analysis::hull), where no void
+/// lies. On scenes without walls a Kinect never clears the air above them (a ray without a
+/// return clears nothing), and the views that look into open containers from above stand in
+/// that air (README, "Exploration over a scene suite").
+/// - Unknown (the paper's): the eye stands in a known free cell; Algorithm 1's rays stop there.
+/// - View: a viewpoint may also stand in such a cell (the same clearance from occupied cells),
+///   and without view bounds anywhere in the arm's reach, not only in the known cells' box;
+///   Algorithm 1 is the paper's, so candidates come from its field and their stepped-back,
+///   rolled and climbed poses reach the air. What MoveIt's collision checking assumes of
+///   unknown space.
+/// - Free: as View, and Algorithm 1's rays pass those cells as free ones.
+enum class Exterior { Unknown, View, Free };
+const char* to_string(Exterior mode);
+/// UsageError naming `what` unless `name` is unknown, view or free.
+Exterior parse_exterior(const std::string& name, const std::string& what);
+
 struct Config {
   Strategy strategy = Strategy::FrontierVoid;
   io::DepthCamera sensor;             ///< intrinsics and depths; depth_max_m is s_r. Default Kinect v1
@@ -114,14 +130,8 @@ struct Config {
   /// counts as `ignore` did; the loops gained on the suite and the replicas (measured against
   /// `ignore`).
   viewpoints::NearUnknown near_unknown = viewpoints::NearUnknown::Hidden;
-  /// Unknown cells outside the voids' hull (frontier_voids::Analysis::hull) count as free for
-  /// the search: Algorithm 1's rays pass them, a viewpoint may stand in them (with the same
-  /// clearance from occupied cells), and without view bounds the sensor may go anywhere in
-  /// the arm's reach, not only within the known cells' box. What MoveIt's collision checking
-  /// assumes of unknown space. false (the paper's): the eye stands in a known free cell. On
-  /// scenes without walls a Kinect never clears the air above them (no return, no ray), and
-  /// the views that look into open containers from above stand in that air.
-  bool exterior_free = false;
+  /// What the search takes unknown cells outside the voids' hull for (Exterior).
+  Exterior exterior = Exterior::Unknown;
   /// Algorithm 1's accumulation: every utility vector (exact, the paper's) or, above
   /// max_utility_vectors, a stratified sample whose expected field is the exact one
   /// (utility/utility.hpp).

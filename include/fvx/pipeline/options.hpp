@@ -79,8 +79,8 @@ bool parse_void_hull(const Args& args, bool fallback);
 /// --near-unknown's value (nbv::Config::near_unknown), `fallback` when absent; UsageError
 /// when bad.
 viewpoints::NearUnknown parse_near_unknown(const Args& args, viewpoints::NearUnknown fallback);
-/// --exterior unknown|free (nbv::Config::exterior_free); `fallback` when absent.
-bool parse_exterior(const Args& args, bool fallback);
+/// --exterior's value (nbv::Config::exterior), `fallback` when absent; UsageError when bad.
+nbv::Exterior parse_exterior(const Args& args, nbv::Exterior fallback);
 
 /// What the search models, for commands that search: --far-voids-only/--near-voids,
 /// --target-size, --accumulation/--utility-vectors and the depth camera; `pipeline_echo` and

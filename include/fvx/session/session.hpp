@@ -66,9 +66,9 @@ struct Manifest {
   /// Scans hold rays without a surface as points beyond the depth limit, which clear their
   /// ray (pipeline::Config::clear_beyond_range; fvx explore --no-return free). Absent: false.
   bool clear_beyond_range = false;
-  /// Unknown cells outside the voids' hull taken for free (nbv::Config::exterior_free;
-  /// --exterior free). Absent: false.
-  bool exterior_free = false;
+  /// What the search took unknown cells outside the voids' hull for: "unknown", "view" or
+  /// "free" (nbv::Config::exterior; fvx explore --exterior). Absent: "unknown".
+  std::string exterior = "unknown";
   /// Scans were integrated by OctoMap's discretised insertion (pipeline::Config::discretize;
   /// fvx explore --discretize). Absent: false, exact insertion.
   bool discretize = false;

@@ -23,20 +23,26 @@ using test::source;
 // The closed box (outer 0.52…1.02 × −0.27…0.23 × 0…0.40 m, walls 2 cm, a 16 cm opening in
 // the middle of the lid) scanned from six sides at 1.3 m, 2 cm cells: every wall is known,
 // the interior is unknown except what the first scans saw through the opening.
+/// Views of the closed box's centre from `radius_m` away at each azimuth, `height_m` above it.
+std::vector<Eigen::Isometry3d> views_of_the_box(double radius_m, double height_m, const std::vector<double>& azimuths_rad) {
+  const Eigen::Vector3d centre(0.77, -0.02, 0.2);
+  std::vector<Eigen::Isometry3d> views;
+  for (const double a : azimuths_rad) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = centre + Eigen::Vector3d(radius_m * std::cos(a), radius_m * std::sin(a), height_m);
+    T.linear() = viewpoints::look_along(centre - T.translation(), 0.0);
+    views.push_back(T);
+  }
+  return views;
+}
+
 struct ClosedBox {
   map::OccupancyMap map{0.02};
   frontier_voids::Analysis analysis;
   ClosedBox() {
-    const Eigen::Vector3d centre(0.77, -0.02, 0.2);
-    std::vector<Eigen::Isometry3d> views;
-    for (int i = 0; i < 6; ++i) {
-      const double a = 2 * M_PI * i / 6;
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.translation() = centre + Eigen::Vector3d(1.3 * std::cos(a), 1.3 * std::sin(a), 0.7);
-      T.linear() = viewpoints::look_along(centre - T.translation(), 0.0);
-      views.push_back(T);
-    }
-    test::integrate_views(map, sim::builtin_scene("closed-box"), views);
+    std::vector<double> azimuths;
+    for (int i = 0; i < 6; ++i) azimuths.push_back(2 * M_PI * i / 6);
+    test::integrate_views(map, sim::builtin_scene("closed-box"), views_of_the_box(1.3, 0.7, azimuths));
     frontiers::FrontierSet frontier_set;
     frontier_set.rebuild(map);
     voids::VoidSet void_set;
@@ -580,70 +586,98 @@ TEST(Nbv, TheSensorStaysInsideTheViewBounds) {
 
 // The closed box scanned from three sides at its own height: the air above it stays
 // unknown (a ray that meets nothing records nothing), so no known free cell looks down
-// through the lid's opening. With Config::exterior_free the unknown cells outside the voids'
-// hull count as free: views may stand there, never inside the hull, still clear of occupied
-// cells and reachable, and they see far more of the void than the known free cells allow.
-TEST(Nbv, WithTheExteriorFreeViewsMayStandInTheUnknownAirOutsideTheHull) {
-  map::OccupancyMap map(0.02);
-  const Eigen::Vector3d centre(0.77, -0.02, 0.2);
-  std::vector<Eigen::Isometry3d> views;
-  for (const double a : {-M_PI / 2, M_PI, M_PI / 2}) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = centre + Eigen::Vector3d(1.0 * std::cos(a), 1.0 * std::sin(a), 0.05);
-    T.linear() = viewpoints::look_along(centre - T.translation(), 0.0);
-    views.push_back(T);
+// through the lid's opening.
+struct BoxSeenFromItsSides {
+  map::OccupancyMap map{0.02};
+  frontier_voids::Analysis analysis;
+  BoxSeenFromItsSides() {
+    test::integrate_views(map, sim::builtin_scene("closed-box"), views_of_the_box(1.0, 0.05, {-M_PI / 2, M_PI, M_PI / 2}));
+    analysis = frontier_voids::analyse_map(map, std::nullopt, voids::ClusterConfig{});
   }
-  test::integrate_views(map, sim::builtin_scene("closed-box"), views);
-  const frontier_voids::Analysis a = frontier_voids::analyse_map(map, std::nullopt, voids::ClusterConfig{});
+};
+
+// Config::exterior View and Free: views may stand in the unknown cells outside the voids'
+// hull, never inside it, still clear of occupied cells and reachable, and they see only the
+// analysis' void cells. View keeps the paper's field (in the same sensor box); Free's rays
+// run on through the air.
+TEST(Nbv, UnderViewAndFreeTheSensorMayStandInTheUnknownAirOutsideTheHull) {
+  const BoxSeenFromItsSides box;
+  const frontier_voids::Analysis& a = box.analysis;
   ASSERT_GT(a.void_cells.size(), 1000u);
   ASSERT_FALSE(a.hull.empty());
   const Arm arm;
   const Reach reach = arm.reach({0.2, 0.0, 0.0});
   Config paper = coarse();
   paper.top = 50;
-  Config exterior = paper;
-  exterior.exterior_free = true;
-  const Result known = select(map, a, reach, paper), air = select(map, a, reach, exterior);
-  ASSERT_FALSE(air.views.empty()) << air.reason;
+  // The same sensor box for all: Algorithm 1 reads the field only in it (the candidate box),
+  // and without view bounds View and Free widen it to the arm's reach.
+  paper.view_bounds_m = Eigen::AlignedBox3d(Eigen::Vector3d(-0.5, -1.2, 0.0), Eigen::Vector3d(1.6, 1.2, 1.3));
+  const Result known = select(box.map, a, reach, paper);
   for (const View& v : known.views)
-    EXPECT_EQ(map.state(*map.key_of(v.T_world_sensor.translation())), map::VoxelState::Free);
-  const auto occupied = map.occupied_centers();
-  std::size_t in_unknown = 0;
-  for (const View& v : air.views) {
-    const Eigen::Vector3d p = v.T_world_sensor.translation();
-    const std::optional<map::VoxelKey> k = map.key_of(p);
-    ASSERT_TRUE(k);
-    if (map.state(*k) == map::VoxelState::Unknown) {
-      ++in_unknown;
-      EXPECT_FALSE(a.hull.contains(map.center_of(*k))) << "an eye in the hull, where voids lie";
-    } else {
-      EXPECT_EQ(map.state(*k), map::VoxelState::Free);
+    EXPECT_EQ(box.map.state(*box.map.key_of(v.T_world_sensor.translation())), map::VoxelState::Free);
+  const auto occupied = box.map.occupied_centers();
+  for (const Exterior mode : {Exterior::View, Exterior::Free}) {
+    Config exterior = paper;
+    exterior.exterior = mode;
+    const Result air = select(box.map, a, reach, exterior);
+    ASSERT_FALSE(air.views.empty()) << air.reason;
+    std::size_t in_unknown = 0;
+    for (const View& v : air.views) {
+      const Eigen::Vector3d p = v.T_world_sensor.translation();
+      const std::optional<map::VoxelKey> k = box.map.key_of(p);
+      ASSERT_TRUE(k);
+      if (box.map.state(*k) == map::VoxelState::Unknown) {
+        ++in_unknown;
+        EXPECT_FALSE(a.hull.contains(box.map.center_of(*k))) << "an eye in the hull, where voids lie";
+      } else {
+        EXPECT_EQ(box.map.state(*k), map::VoxelState::Free);
+      }
+      double nearest = INFINITY;
+      for (const auto& o : occupied) nearest = std::min(nearest, (o.cast<double>() - p).norm());
+      EXPECT_GT(nearest, exterior.clearance_m - 1e-6);
+      EXPECT_TRUE(arm.capmap.reachable(reach.T_world_base, p, v.T_world_sensor.linear().col(2)));
+      EXPECT_EQ(v.joints_rad.size(), arm.arm.dof());
+      for (const map::VoxelKey& c : v.seen_void_cells)  // the voids are the analysis' own
+        EXPECT_TRUE(std::binary_search(a.void_cells.begin(), a.void_cells.end(), c));
     }
-    double nearest = INFINITY;
-    for (const auto& o : occupied) nearest = std::min(nearest, (o.cast<double>() - p).norm());
-    EXPECT_GT(nearest, exterior.clearance_m - 1e-6);
-    EXPECT_TRUE(arm.capmap.reachable(reach.T_world_base, p, v.T_world_sensor.linear().col(2)));
-    EXPECT_EQ(v.joints_rad.size(), arm.arm.dof());
-    for (const map::VoxelKey& c : v.seen_void_cells)  // the voids are the analysis' own
-      EXPECT_TRUE(std::binary_search(a.void_cells.begin(), a.void_cells.end(), c));
+    EXPECT_GT(in_unknown, 0u) << to_string(mode);
+    if (mode == Exterior::View) {  // the paper's field: the same vectors and cells with utility
+      EXPECT_EQ(air.utility_vectors, known.utility_vectors);
+      EXPECT_EQ(air.pruning.utility_cells, known.pruning.utility_cells);
+    } else {
+      EXPECT_GT(air.pruning.utility_cells, known.pruning.utility_cells) << "Free: rays pass the air";
+    }
   }
-  EXPECT_GT(in_unknown, 0u);
-  // Every pose the exhaustive strategy scores in known free cells it scores with the air as
-  // well, and with the same U (the scorer neither counts nor stops at unknown cells outside
-  // the voids): the best view can only gain. Unscreened, so that each pose's U is the full fan's.
-  paper.strategy = exterior.strategy = Strategy::Exhaustive;
-  paper.coarse_ray_cols = paper.coarse_ray_rows = exterior.coarse_ray_cols = exterior.coarse_ray_rows = 0;
-  paper.ray_cols = exterior.ray_cols = 16;  // 66 000 poses with the air: a coarse fan keeps it short
-  paper.ray_rows = exterior.ray_rows = 12;
-  const Result all_known = select(map, a, reach, paper), all_air = select(map, a, reach, exterior);
-  ASSERT_FALSE(all_known.views.empty()) << all_known.reason;
-  ASSERT_FALSE(all_air.views.empty()) << all_air.reason;
-  EXPECT_GT(all_air.poses_scored, all_known.poses_scored);
-  EXPECT_GE(all_air.views.front().void_cells_seen, all_known.views.front().void_cells_seen);
-  std::printf("frontier-void best U: %zu known free, %zu with the air; exhaustive: %zu, %zu (%zu, %zu poses)\n",
-              known.views.empty() ? 0 : known.views.front().void_cells_seen, air.views.front().void_cells_seen,
-              all_known.views.front().void_cells_seen, all_air.views.front().void_cells_seen,
-              all_known.poses_scored, all_air.poses_scored);
+}
+
+// The exhaustive strategy scores every pose in known free cells under View as well, and with
+// the same U (the scorer neither counts nor stops at unknown cells outside the voids): the
+// best view can only gain. Free adds no pose to View's and changes no U. Unscreened, so that
+// each pose's U is the full fan's.
+TEST(Nbv, UnderViewTheExhaustiveStrategysBestViewCanOnlyGain) {
+  const BoxSeenFromItsSides box;
+  const Arm arm;
+  const Reach reach = arm.reach({0.2, 0.0, 0.0});
+  Config c = coarse();
+  c.strategy = Strategy::Exhaustive;
+  c.coarse_ray_cols = c.coarse_ray_rows = 0;
+  c.ray_cols = 16;  // 66 000 poses with the air: a coarse fan keeps it short
+  c.ray_rows = 12;
+  Config view = c, free = c;
+  view.exterior = Exterior::View;
+  free.exterior = Exterior::Free;
+  const Result known = select(box.map, box.analysis, reach, c), air = select(box.map, box.analysis, reach, view),
+               freed = select(box.map, box.analysis, reach, free);
+  ASSERT_FALSE(known.views.empty()) << known.reason;
+  ASSERT_FALSE(air.views.empty()) << air.reason;
+  ASSERT_FALSE(freed.views.empty()) << freed.reason;
+  EXPECT_GT(air.poses_scored, known.poses_scored);
+  EXPECT_GE(air.views.front().void_cells_seen, known.views.front().void_cells_seen);
+  EXPECT_EQ(freed.poses_scored, air.poses_scored);
+  EXPECT_EQ(freed.views.front().void_cells_seen, air.views.front().void_cells_seen);
+  std::printf("exhaustive best U: %zu in known free cells (%zu poses), %zu with the air (%zu poses)\n",
+              known.views.front().void_cells_seen, known.poses_scored, air.views.front().void_cells_seen,
+              air.poses_scored);
 }
 
 TEST(Nbv, TheFrontierStrategyViewsTheLargestFrontierCluster) {
