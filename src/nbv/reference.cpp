@@ -238,7 +238,7 @@ Result select_random(Search& s, Result result) {
     }
   } else {
     for (std::size_t i = 0; i < s.grid.cell_count(); ++i) {
-      if (s.grid.state_at(i) != map::VoxelState::Free) continue;
+      if (!s.may_stand_in(i)) continue;
       ++pruning.utility_cells;
       const map::VoxelKey k = s.grid.key(i);
       if (s.keep_position(k, s.grid.center_of(k), pruning)) positions.push_back(s.grid.center_of(k));

@@ -198,8 +198,7 @@ Eigen::Matrix3d Search::snap_to_reach(const Eigen::Vector3d& p_world, const Eige
 }
 
 bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const {
-  if (!grid.contains(cell) ||
-      (grid.state(cell) != map::VoxelState::Free && !(exterior_view.size() && exterior_view[grid.index(cell)]))) {
+  if (!grid.contains(cell) || !may_stand_in(grid.index(cell))) {
     ++pruning.not_free;
     return false;
   }

@@ -105,6 +105,11 @@ struct Search {
   mutable std::vector<viewpoints::FovScorer::Workspace> workspaces;
 
   bool any_hidden = false;  ///< some void cell is hidden: u_i must be recounted (visible_utility)
+  /// Whether the eye may stand in grid cell `i`: a free cell, or (Config::exterior) an
+  /// unknown one outside the voids' hull.
+  bool may_stand_in(std::size_t i) const {
+    return grid.state_at(i) == map::VoxelState::Free || (!exterior_view.empty() && exterior_view[i]);
+  }
   /// Config::exterior: marks the grid's unknown cells outside the voids' hull in
   /// exterior_view (and, with Exterior::Free, makes them free).
   void mark_exterior();

@@ -54,8 +54,9 @@ struct Reach {
 ///   and without view bounds anywhere in the arm's reach, not only in the known cells' box;
 ///   Algorithm 1 is the paper's, so candidates come from its field and their stepped-back,
 ///   rolled and climbed poses reach the air. What MoveIt's collision checking assumes of
-///   unknown space.
-/// - Free: as View, and Algorithm 1's rays pass those cells as free ones.
+///   unknown space. U still sees the cells as unknown (NearUnknown::Any and
+///   unknown_depth_cells cut rays there).
+/// - Free: as View, and the cells are free for Algorithm 1's rays and for U.
 enum class Exterior { Unknown, View, Free };
 const char* to_string(Exterior mode);
 /// UsageError naming `what` unless `name` is unknown, view or free.

@@ -641,6 +641,11 @@ TEST(Nbv, UnderViewAndFreeTheSensorMayStandInTheUnknownAirOutsideTheHull) {
         EXPECT_TRUE(std::binary_search(a.void_cells.begin(), a.void_cells.end(), c));
     }
     EXPECT_GT(in_unknown, 0u) << to_string(mode);
+    // Free-flying, the random strategy draws its positions from the cells an eye may stand in.
+    Config random = exterior, random_known = paper;
+    random.strategy = random_known.strategy = Strategy::Random;
+    const Result r = select(box.map, a, std::nullopt, random), r_known = select(box.map, a, std::nullopt, random_known);
+    EXPECT_GT(r.pruning.candidate_cells, r_known.pruning.candidate_cells) << to_string(mode);
     if (mode == Exterior::View) {  // the paper's field: the same vectors and cells with utility
       EXPECT_EQ(air.utility_vectors, known.utility_vectors);
       EXPECT_EQ(air.pruning.utility_cells, known.pruning.utility_cells);
