@@ -30,27 +30,29 @@ Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::Alig
   return exterior != Exterior::Unknown ? around : around.intersection(known);
 }
 
+/// The world box around the arm's reachable voxels (empty when none is reachable).
+Eigen::AlignedBox3d reach_box_world(const Reach& reach) {
+  const Eigen::AlignedBox3d base = reach.capmap->reachable_box_base();
+  Eigen::AlignedBox3d world;
+  if (!base.isEmpty())
+    for (int c = 0; c < 8; ++c) world.extend(reach.T_world_base * base.corner(Eigen::AlignedBox3d::CornerType(c)));
+  return world;
+}
+
 /// The sensor's box without --view-bounds: the known cells' box and, when unknown cells
 /// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well.
 Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const std::optional<Reach>& reach,
                                         const Config& config) {
   if (config.view_bounds_m) return *config.view_bounds_m;
   if (config.exterior == Exterior::Unknown || known.isEmpty() || !reach || !reach->capmap) return known;
-  const Eigen::AlignedBox3d base = reach->capmap->reachable_box_base();
-  Eigen::AlignedBox3d box = known;
-  if (!base.isEmpty())
-    for (int c = 0; c < 8; ++c) box.extend(reach->T_world_base * base.corner(Eigen::AlignedBox3d::CornerType(c)));
-  return box;
+  return known.merged(reach_box_world(*reach));
 }
 
 /// The view bounds within the world box around the arm's reachable voxels.
 Eigen::AlignedBox3d candidate_box(const Eigen::AlignedBox3d& view_bounds, const std::optional<Reach>& reach) {
   if (!reach || !reach->capmap) return view_bounds;
-  const Eigen::AlignedBox3d base = reach->capmap->reachable_box_base();
-  if (base.isEmpty()) return base;
-  Eigen::AlignedBox3d world;
-  for (int c = 0; c < 8; ++c) world.extend(reach->T_world_base * base.corner(Eigen::AlignedBox3d::CornerType(c)));
-  return world.intersection(view_bounds);
+  const Eigen::AlignedBox3d world = reach_box_world(*reach);
+  return world.isEmpty() ? world : world.intersection(view_bounds);
 }
 
 /// Per cell of `cluster`, the sum of the unit steps to its unknown face-neighbours.

@@ -143,22 +143,18 @@ void read_search_model(const Json& j, const Reader& r, Manifest& m) {
     if (!(m.target_size_m >= 0.0 && m.target_size_m <= 10.0)) r.fail("'target_size_m' must be in [0, 10] metres");
   }
   if (j.contains("unknown_depth_cells")) m.unknown_depth_cells = int(r.integer(j, "unknown_depth_cells", 0, 1000));
-  if (j.contains("exterior")) {
-    m.exterior = r.text(j, "exterior");
-    try {  // read as replay will read it
-      nbv::parse_exterior(m.exterior, "'exterior'");
+  // A mode's name, checked by the parser replay will read it with.
+  const auto mode = [&](const char* key, std::string& out, const auto& parse) {
+    if (!j.contains(key)) return;
+    out = r.text(j, key);
+    try {
+      parse(out, "'" + std::string(key) + "'");
     } catch (const UsageError& e) {
       r.fail(e.what());
     }
-  }
-  if (j.contains("near_unknown")) {
-    m.near_unknown = r.text(j, "near_unknown");
-    try {  // the modes' names are viewpoints', read as replay will read them
-      viewpoints::parse_near_unknown(m.near_unknown, "'near_unknown'");
-    } catch (const UsageError& e) {
-      r.fail(e.what());
-    }
-  }
+  };
+  mode("exterior", m.exterior, nbv::parse_exterior);
+  mode("near_unknown", m.near_unknown, viewpoints::parse_near_unknown);
   if (j.contains("accumulation")) {
     m.accumulation = r.text(j, "accumulation");
     if (m.accumulation != "exact" && m.accumulation != "sampled") r.fail("'accumulation' must be exact or sampled");
