@@ -34,9 +34,11 @@ for n in 1 2; do
   # with them U would not fall to 0 as the paper's tables do (README, "One U for every command").
   # --near-unknown ignore: the paper's U, which no near unknown cell cuts (the default, hidden,
   # learns from blank views, which the paper's loop did not; README, "Exploration over a scene suite").
+  # --exterior unknown: the paper's viewpoints, each in a known free cell (the default, view, may
+  # also stand in the unknown air outside the voids' hull; README, "--exterior").
   "$fvx" explore "data/scenes/$scene.ply" --capmap data/arms/fvx-arm.fcm --base 0,0,0,0,0,0 \
     --arm data/arms/fvx-arm.urdf --target-size "$target_size" --seed 1 --max-views 15 --far-voids-only \
-    --near-unknown ignore --format json -o "$out/$scene-session" \
+    --near-unknown ignore --exterior unknown --format json -o "$out/$scene-session" \
     > "$out/$scene-explore.json" 2>/dev/null
   "$fvx" replay "$out/$scene-session" -o "$out/$scene-replay" --timing --format json > "$out/$scene-replay.json" 2>/dev/null
   jq -r --argjson paper "${!paper}" --slurpfile explore "$out/$scene-explore.json" '

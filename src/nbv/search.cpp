@@ -40,12 +40,17 @@ Eigen::AlignedBox3d reach_box_world(const Reach& reach) {
 }
 
 /// The sensor's box without --view-bounds: the known cells' box and, when unknown cells
-/// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well.
-Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const std::optional<Reach>& reach,
-                                        const Config& config) {
+/// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well, as far
+/// as it lies within the sensor's range of the search space (an eye farther away sees no
+/// void; a far base would otherwise stretch the grid across the distance).
+Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
+                                        const std::optional<Reach>& reach, const Config& config) {
   if (config.view_bounds_m) return *config.view_bounds_m;
   if (config.exterior == Exterior::Unknown || known.isEmpty() || !reach || !reach->capmap) return known;
-  return known.merged(reach_box_world(*reach));
+  const Eigen::Vector3d range = Eigen::Vector3d::Constant(config.sensor.depth_max_m);
+  const Eigen::AlignedBox3d in_range(search_space.min() - range, search_space.max() + range);
+  const Eigen::AlignedBox3d reach_in_range = reach_box_world(*reach).intersection(in_range);
+  return reach_in_range.isEmpty() ? known : known.merged(reach_in_range);
 }
 
 /// The view bounds within the world box around the arm's reachable voxels.
@@ -92,7 +97,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       reach(reach_in),
       config(config_in),
       known_m(known_box(map_in)),
-      view_bounds_m(default_view_bounds(known_m, reach_in, config_in)),
+      view_bounds_m(default_view_bounds(known_m, analysis.bounds_m, reach_in, config_in)),
       candidate_box_m(candidate_box(view_bounds_m, reach_in)),
       grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m, config_in.exterior)) {
   if (config.exterior != Exterior::Unknown) mark_exterior();

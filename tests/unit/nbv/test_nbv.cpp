@@ -107,7 +107,7 @@ TEST(Nbv, ClosedBoxTheBestViewLooksThroughTheOpening) {
       << "frontier-void " << fv.views.front().void_cells_seen << " vs exhaustive " << ex.views.front().void_cells_seen;
 }
 
-TEST(Nbv, EveryViewIsReachableFreeAndClearWithItsJoints) {
+TEST(Nbv, EveryViewIsReachableInFreeSpaceOrAirAndClearWithItsJoints) {
   const ClosedBox& box = closed_box();
   const Arm arm;
   const Reach reach = arm.reach({0.2, 0.0, 0.0});
@@ -123,7 +123,12 @@ TEST(Nbv, EveryViewIsReachableFreeAndClearWithItsJoints) {
     const Eigen::Isometry3d T_base_sensor = arm.arm.fk(v.joints_rad);
     EXPECT_LT((reach.T_world_base * T_base_sensor.translation() - p).norm(), reach.ik.position_tolerance_m + 1e-9);
     EXPECT_LT(std::acos(std::min(1.0, arm.arm.viewing_direction(v.joints_rad).dot(d))), reach.ik.angle_tolerance_rad + 1e-9);
-    EXPECT_EQ(box.map.state(*box.map.key_of(p)), map::VoxelState::Free);
+    // Free, or (Exterior::View, the default) unknown air outside the voids' hull.
+    const map::VoxelKey eye = *box.map.key_of(p);
+    if (box.map.state(eye) != map::VoxelState::Free) {
+      EXPECT_EQ(box.map.state(eye), map::VoxelState::Unknown);
+      EXPECT_FALSE(box.analysis.hull.contains(box.map.center_of(eye)));
+    }
     double nearest = INFINITY;
     for (const auto& o : occupied) nearest = std::min(nearest, (o.cast<double>() - p).norm());
     EXPECT_GT(nearest, config.clearance_m - 1e-6);
@@ -324,7 +329,11 @@ TEST(NbvRealData, OnTheSlambookMapTheSampledBestViewSeesWhatTheExactOneSees) {
 std::size_t full_fan_U(const map::OccupancyMap& map, const frontier_voids::Analysis& a, const Eigen::Isometry3d& T,
                        std::vector<map::VoxelKey>* seen_keys = nullptr, const Config& c = Config{}) {
   const map::Stats stats = map.stats();
-  const map::DenseGrid grid(map, Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m));
+  // The known cells' box and the eye's cell: under Exterior::View it may stand outside.
+  Eigen::AlignedBox3d box(stats.known_min_m, stats.known_max_m);
+  const Eigen::Vector3d cell = Eigen::Vector3d::Constant(map.resolution_m());
+  box.extend(T.translation() - cell).extend(T.translation() + cell);
+  const map::DenseGrid grid(map, box);
   core::LargeVector<std::uint8_t> mask(grid.cell_count(), 0);
   for (const auto& v : a.void_clusters)
     if (!a.frontier_voids[std::size_t(v.id)].enclosed())
@@ -608,6 +617,7 @@ TEST(Nbv, UnderViewAndFreeTheSensorMayStandInTheUnknownAirOutsideTheHull) {
   const Arm arm;
   const Reach reach = arm.reach({0.2, 0.0, 0.0});
   Config paper = coarse();
+  paper.exterior = Exterior::Unknown;
   paper.top = 50;
   // The same sensor box for all: Algorithm 1 reads the field only in it (the candidate box),
   // and without view bounds View and Free widen it to the arm's reach.
@@ -668,6 +678,7 @@ TEST(Nbv, UnderViewTheExhaustiveStrategysBestViewCanOnlyGain) {
   c.coarse_ray_cols = c.coarse_ray_rows = 0;
   c.ray_cols = 16;  // 66 000 poses with the air: a coarse fan keeps it short
   c.ray_rows = 12;
+  c.exterior = Exterior::Unknown;
   Config view = c, free = c;
   view.exterior = Exterior::View;
   free.exterior = Exterior::Free;
