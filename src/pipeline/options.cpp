@@ -173,8 +173,9 @@ std::vector<OptionSpec> void_model_options(const std::string& pipeline_echo, con
                                       "single search has none)", nbv_echo + "/near_unknown"},
           {"exterior", 0, "MODE", "unknown cells outside the voids' hull: view (the default: taken for air, as "
                                   "MoveIt's collision checking takes unknown space: viewpoints may stand in them, "
-                                  "anywhere in the arm's reach within --depth-max of the search space), unknown (the paper's: the sensor stands in a known "
-                                  "free cell) or free (view, and Algorithm 1's rays pass them)",
+                                  "anywhere in the arm's reach within --depth-max of the search space), unknown "
+                                  "(the paper's: the sensor stands in a known free cell) or free (view, and "
+                                  "Algorithm 1's rays pass them)",
            nbv_echo + "/exterior"}};
 }
 
