@@ -119,8 +119,11 @@ io::PictureCamera picture_camera(const PictureScene& scene, const PictureRequest
   side.normalize();
   const double el = kElevation_deg * M_PI / 180.0;
   const Eigen::Vector3d direction(side.x() * std::cos(el), side.y() * std::cos(el), std::sin(el));
-  // S's bounding sphere inside the narrower of the two fields of view.
-  const double radius = S.isEmpty() ? 1.0 : std::max(0.5 * S.sizes().norm(), 0.05);
+  // S's bounding sphere inside the narrower of the two fields of view, grown to hold the
+  // views drawn: a view may stand in the air beyond S (nbv --exterior view).
+  double radius = S.isEmpty() ? 1.0 : std::max(0.5 * S.sizes().norm(), 0.05);
+  for (const auto& view : {scene.taken, scene.chosen})
+    if (view) radius = std::max(radius, (view->translation() - camera.target_m).norm() + scene.cell_m);
   const double half_h = 0.5 * camera.fov_deg * M_PI / 180.0;
   const double half_v = std::atan(std::tan(half_h) * height_px / width_px);
   camera.eye_m = camera.target_m + direction * (1.05 * radius / std::sin(std::min(half_h, half_v)));

@@ -65,7 +65,8 @@ void add_utility_field(PictureScene& scene, const nbv::Result& r);
 
 /// The camera: at the request's eye and target if given; by default it looks at the centre
 /// of S from the robot's side (else from −x, −y), 35° above the horizontal, far enough that
-/// S's bounding sphere fits the narrower field of view.
+/// S's bounding sphere, grown to hold the taken and chosen views' eyes, fits the narrower
+/// field of view.
 io::PictureCamera picture_camera(const PictureScene& scene, const PictureRequest& request, int width_px,
                                  int height_px);
 /// The picture; `annotated`: with the legend, scale bar and axes (false: the bare scene, for
