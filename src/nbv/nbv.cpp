@@ -157,7 +157,7 @@ Result select_frontier_void(Search& s, const utility::Field& field, Result resul
   result.timing.sampling_s = t0.seconds();
 
   t0 = Stopwatch();
-  std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_rays());
+  std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_fan());
   refine(s, poses, U, result);
   result.views = s.rank(poses, U, &field.util_m3, &field);
   result.timing.scoring_s = t0.seconds();

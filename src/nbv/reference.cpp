@@ -50,17 +50,17 @@ bool meets_cone(const Sphere& sphere, const Eigen::Vector3d& apex, const Eigen::
 constexpr std::size_t kPrescreenMinPoses = 1024;
 constexpr std::size_t kPrescreenShare = 4;
 
-/// U of every pose with the coarse fan (screen_rays()), or 0 where the pre-screen left the
+/// U of every pose with the coarse fan (screen_fan()), or 0 where the pre-screen left the
 /// pose out. The exhaustive strategy scores every pose the capability map holds (18 000 to
 /// 22 000 on the suite's scenes), and the coarse fan's cast of them all was three quarters of
 /// the default suite's time. A fan half as fine each way (a quarter of the rays) scores them
 /// all first; the best share by its count is scored with the coarse fan, as the frontier-void
 /// strategy's poses are.
 std::vector<std::size_t> screen_exhaustive(const Search& s, const std::vector<Pose>& poses, Result& result) {
-  const std::vector<Eigen::Vector3d>* pre_rays = s.prescreen_rays();
-  if (!pre_rays || poses.size() < kPrescreenMinPoses)
-    return s.score(*s.void_scorer, poses, result, s.screen_rays());
-  const std::vector<std::size_t> pre = s.score(*s.void_scorer, poses, result, pre_rays);
+  const viewpoints::CoarseFan* pre_fan = s.prescreen_fan();
+  if (!pre_fan || poses.size() < kPrescreenMinPoses)
+    return s.score(*s.void_scorer, poses, result, s.screen_fan());
+  const std::vector<std::size_t> pre = s.score(*s.void_scorer, poses, result, pre_fan);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (pre[i] > 0) order.push_back(i);
@@ -72,7 +72,7 @@ std::vector<std::size_t> screen_exhaustive(const Search& s, const std::vector<Po
   for (const std::size_t i : order) kept.push_back(poses[i]);
   // The poses were counted (scored, seeing nothing) by the pre-screen: not again.
   const std::size_t scored = result.poses_scored, seeing_nothing = result.pruning.seeing_nothing;
-  const std::vector<std::size_t> U_kept = s.score(*s.void_scorer, kept, result, s.screen_rays());
+  const std::vector<std::size_t> U_kept = s.score(*s.void_scorer, kept, result, s.screen_fan());
   result.poses_scored = scored;
   result.pruning.seeing_nothing = seeing_nothing;
   std::vector<std::size_t> U(poses.size(), 0);

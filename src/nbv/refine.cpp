@@ -102,7 +102,7 @@ std::vector<Pose> neighbours(const Search& s, const Pose& from, std::size_t from
 /// Scores `extra` and appends it, with its scores, to `poses` and `U`.
 void score_more(const Search& s, std::vector<Pose> extra, std::vector<Pose>& poses, std::vector<std::size_t>& U,
                 Result& result) {
-  const std::vector<std::size_t> U_extra = s.score(*s.void_scorer, extra, result, s.screen_rays());
+  const std::vector<std::size_t> U_extra = s.score(*s.void_scorer, extra, result, s.screen_fan());
   poses.insert(poses.end(), std::make_move_iterator(extra.begin()), std::make_move_iterator(extra.end()));
   U.insert(U.end(), U_extra.begin(), U_extra.end());
 }

@@ -123,13 +123,17 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
                                                   float(std::floor(clearance_cells_sq) + 1.0));
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   const bool screens = config.strategy == Strategy::FrontierVoid || config.strategy == Strategy::Exhaustive;
+  const auto fan = [&](int cols, int rows) {
+    return viewpoints::coarse_fan(config.sensor.intrinsics, cols, rows, config.ray_cols, config.ray_rows, R);
+  };
   if (screens && config.coarse_ray_cols > 0 &&
       std::size_t(config.coarse_ray_cols) * std::size_t(config.coarse_ray_rows) < rays_sensor.size())
-    rays_coarse = viewpoints::ray_fan(config.sensor.intrinsics, config.coarse_ray_cols, config.coarse_ray_rows);
+    fan_coarse = fan(config.coarse_ray_cols, config.coarse_ray_rows);
   const int pre_cols = std::max(1, config.coarse_ray_cols / 2), pre_rows = std::max(1, config.coarse_ray_rows / 2);
   // Only a fan with fewer rays than the coarse one saves work (a 1 x N coarse fan has none).
-  if (config.strategy == Strategy::Exhaustive && std::size_t(pre_cols) * std::size_t(pre_rows) < rays_coarse.size())
-    rays_prescreen = viewpoints::ray_fan(config.sensor.intrinsics, pre_cols, pre_rows);
+  if (config.strategy == Strategy::Exhaustive &&
+      std::size_t(pre_cols) * std::size_t(pre_rows) < fan_coarse.rays.size())
+    fan_prescreen = fan(pre_cols, pre_rows);
   const io::Intrinsics& K = config.sensor.intrinsics;
   half_fov_rad = std::min(std::atan(0.5 * K.width / std::abs(K.fx)), std::atan(0.5 * K.height / std::abs(K.fy)));
   void_scorer = std::make_unique<viewpoints::FovScorer>(grid, void_mask(), rays_sensor, config.sensor.depth_max_m,
@@ -316,21 +320,22 @@ void Search::parallel(std::size_t n, const std::function<void(std::size_t, viewp
 }
 
 std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
-                                       Result& result, const std::vector<Eigen::Vector3d>* rays) const {
+                                       Result& result, const viewpoints::CoarseFan* coarse) const {
   std::vector<viewpoints::FovScorer::Score> scores(poses.size());
   parallel(
       poses.size(),
       [&](std::size_t i, viewpoints::FovScorer::Workspace& ws) {
-        scores[i] = scorer.score(poses[i].T_world_sensor, ws, nullptr, rays);
+        scores[i] = scorer.score(poses[i].T_world_sensor, ws, nullptr, coarse);
       },
       "scoring poses");
   std::vector<std::size_t> seen(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    seen[i] = scores[i].targets_seen;
+    // Screened, the estimate of the full fan's U ranks (it is never below the coarse count).
+    seen[i] = std::size_t(std::llround(scores[i].full_fan_estimate));
     result.pruning.seeing_nothing += seen[i] == 0;
     result.timing.cells_visited += scores[i].cells_visited;
   }
-  result.timing.rays += poses.size() * (rays ? rays->size() : scorer.ray_count());
+  result.timing.rays += poses.size() * (coarse ? coarse->rays.size() : scorer.ray_count());
   result.poses_scored += poses.size();
   return seen;
 }
@@ -378,7 +383,7 @@ void Search::name_seen(View& v, const std::vector<std::size_t>& seen) const {
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                                const core::LargeVector<double>* util_m3, const utility::Field* field,
                                const std::function<bool(Pose&, std::size_t)>& accept) const {
-  const bool screened = screen_rays() != nullptr;  // `score` came from the coarse fan
+  const bool screened = screen_fan() != nullptr;  // `score` came from the coarse fan
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (score[i] > 0) order.push_back(i);

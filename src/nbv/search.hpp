@@ -67,14 +67,15 @@ struct Search {
 
   /// The targets each pose sees (U with the void scorer), on config.threads threads (the
   /// same on any count); counts the poses, rays, cells visited and poses seeing nothing.
-  /// `rays`: these in place of the scorer's own (screen_rays()).
+  /// `coarse` (screen_fan()): its rays in place of the scorer's own, and each pose's value
+  /// its estimate of the full fan's U, rounded.
   std::vector<std::size_t> score(const viewpoints::FovScorer& scorer, const std::vector<Pose>& poses,
-                                 Result& result, const std::vector<Eigen::Vector3d>* rays = nullptr) const;
+                                 Result& result, const viewpoints::CoarseFan* coarse = nullptr) const;
   /// Ranks by `score` (descending; ties: generation order), drops zeros and poses `accept`
   /// refuses (when given; it may fill the joints or move the pose), keeps config.top and
   /// describes each view (U with the full fan, void cells seen per cluster, contributors,
   /// joints); the described U ranks the views (frontier strategy: `score`). Screened
-  /// (screen_rays(): `score` came from the coarse fan), a few more than config.top views
+  /// (screen_fan(): `score` came from the coarse fan), a few more than config.top views
   /// are described.
   std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
@@ -93,11 +94,11 @@ struct Search {
                 const char* stage = nullptr) const;
   /// The coarse fan that screens the frontier-void and exhaustive strategies' poses
   /// (Config::coarse_ray_cols), or null: every pose with the full fan.
-  const std::vector<Eigen::Vector3d>* screen_rays() const { return rays_coarse.empty() ? nullptr : &rays_coarse; }
+  const viewpoints::CoarseFan* screen_fan() const { return fan_coarse.rays.empty() ? nullptr : &fan_coarse; }
   /// Exhaustive strategy, screened: a fan half as fine as the coarse one each way, which
   /// picks the poses the coarse fan scores (reference.cpp); null: none.
-  const std::vector<Eigen::Vector3d>* prescreen_rays() const {
-    return rays_prescreen.empty() ? nullptr : &rays_prescreen;
+  const viewpoints::CoarseFan* prescreen_fan() const {
+    return fan_prescreen.rays.empty() ? nullptr : &fan_prescreen;
   }
 
   /// Scoring's per-thread scratch (a bit per grid cell), kept across score() and rank()
@@ -145,8 +146,8 @@ struct Search {
   /// (Config::exterior); empty with Exterior::Unknown.
   core::LargeVector<std::uint8_t> exterior_view;
   std::vector<Eigen::Vector3d> rays_sensor;
-  std::vector<Eigen::Vector3d> rays_coarse;  ///< screen_rays(); empty: off
-  std::vector<Eigen::Vector3d> rays_prescreen;  ///< prescreen_rays(); empty: none
+  viewpoints::CoarseFan fan_coarse;     ///< screen_fan(); no rays: off
+  viewpoints::CoarseFan fan_prescreen;  ///< prescreen_fan(); no rays: none
   double half_fov_rad = 0.0;                     ///< the smaller half-angle of the image
   std::unique_ptr<viewpoints::FovScorer> void_scorer;
   /// Strategy Frontier: the largest frontier cluster (ties: the lower id), and per cell of it

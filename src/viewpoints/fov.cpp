@@ -39,6 +39,23 @@ std::vector<Eigen::Vector3d> ray_fan(const io::Intrinsics& K, int cols, int rows
   return rays;
 }
 
+double ray_area_at_1m(const io::Intrinsics& K, int cols, int rows) {
+  return (double(K.width) / cols / std::abs(K.fx)) * (double(K.height) / rows / std::abs(K.fy));
+}
+
+double CoarseFan::full_hits_per_hit(double depth_m, const Eigen::Vector3d& d_world) const {
+  const double cube_shadow_m2 = d_world.cwiseAbs().sum() * cell_m * cell_m;
+  const double z2 = std::max(depth_m * depth_m, 1e-12);
+  const double p_coarse = std::min(1.0, cube_shadow_m2 / (z2 * ray_area_at_1m2));
+  const double p_full = std::min(1.0, cube_shadow_m2 / (z2 * full_ray_area_at_1m2));
+  return p_full / p_coarse;
+}
+
+CoarseFan coarse_fan(const io::Intrinsics& K, int cols, int rows, int full_cols, int full_rows, double cell_m) {
+  FVX_ASSERT(cell_m > 0.0, "coarse_fan: the cell size must be > 0");
+  return {ray_fan(K, cols, rows), ray_area_at_1m(K, cols, rows), ray_area_at_1m(K, full_cols, full_rows), cell_m};
+}
+
 Eigen::Matrix3d look_along(const Eigen::Vector3d& direction_world, double roll_rad) {
   const Eigen::Vector3d z = direction_world.normalized();
   // Image x (right) = z × up, so that image −y (up) = the part of world up across z.
@@ -110,7 +127,7 @@ void FovScorer::ascending(const Workspace& ws, std::vector<std::size_t>& seen) {
 }
 
 FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Workspace& ws,
-                                  std::vector<std::size_t>* seen, const std::vector<Eigen::Vector3d>* rays) const {
+                                  std::vector<std::size_t>* seen, const CoarseFan* coarse) const {
   const std::size_t words = (grid_.cell_count() + 63) / 64;
   if (ws.counted_bits.size() != words) ws.counted_bits.assign(words, 0);
   auto counted = [&ws](std::size_t i) { return (ws.counted_bits[i >> 6] >> (i & 63)) & 1; };
@@ -123,7 +140,7 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
     if (seen) seen->clear();
     return s;
   }
-  for (const Eigen::Vector3d& ray : rays ? *rays : rays_sensor_) {
+  for (const Eigen::Vector3d& ray : coarse ? coarse->rays : rays_sensor_) {
     // The depth limit is along z: the ray (x, y, 1) reaches depth_max at length depth_max·|ray|.
     ws.ray_targets.clear();
     const double length = ray.norm();  // per metre of depth
@@ -170,9 +187,12 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
       if (counted(i)) continue;  // a ray may cross a cell twice only by rounding; count once
       ws.counted_bits[i >> 6] |= std::uint64_t(1) << (i & 63);
       ws.counted.push_back(i);
+      if (coarse)  // in ray order: the same sum on any thread
+        s.full_fan_estimate += coarse->full_hits_per_hit((grid_.center_of(grid_.key(i)) - origin).dot(axis), d);
     }
   }
   s.targets_seen = ws.counted.size();
+  if (!coarse) s.full_fan_estimate = double(s.targets_seen);
   if (seen) ascending(ws, *seen);
   for (const std::size_t i : ws.counted) ws.counted_bits[i >> 6] = 0;  // clean for the next pose
   ws.counted.clear();
