@@ -54,8 +54,9 @@ constexpr std::size_t kPrescreenShare = 4;
 /// pose out. The exhaustive strategy scores every pose the capability map holds (18 000 to
 /// 22 000 on the suite's scenes), and the coarse fan's cast of them all was three quarters of
 /// the default suite's time. A fan half as fine each way (a quarter of the rays) scores them
-/// all first; the best share by its count is scored with the coarse fan, as the frontier-void
-/// strategy's poses are.
+/// all first; the best share by its estimate of the full fan's U (viewpoints::CoarseFan) is
+/// scored with the coarse fan, as the frontier-void strategy's poses are. (The share was
+/// measured with plain counts, before the estimate.)
 std::vector<std::size_t> screen_exhaustive(const Search& s, const std::vector<Pose>& poses, Result& result) {
   const viewpoints::CoarseFan* pre_fan = s.prescreen_fan();
   if (!pre_fan || poses.size() < kPrescreenMinPoses)
