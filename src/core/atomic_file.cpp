@@ -65,10 +65,18 @@ void write_file_atomically(const std::string& path,
   write_path_atomically(path, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) throw FileError(path, std::string("cannot write: ") + std::strerror(errno));
+    errno = 0;  // what a failed write leaves here says why (write_failure)
     write(out);
     out.flush();
-    if (!out) throw FileError(path, "cannot write: write failed (disk full?)");
+    if (!out) {
+      const std::string why = write_failure(errno);
+      throw FileError(path, "cannot write" + (why.empty() ? std::string(": write failed") : why));
+    }
   });
+}
+
+std::string write_failure(int errno_value) {
+  return errno_value == 0 ? "" : std::string(": ") + std::strerror(errno_value);
 }
 
 std::string lowercase_extension(const std::string& path) {

@@ -3,10 +3,21 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <mutex>
 
 namespace fvx {
 
+namespace {
+/// Recursive: a capture inside a capture on one thread nests (dup2 is undone in reverse).
+std::recursive_mutex& capture_lock() {
+  static std::recursive_mutex lock;
+  return lock;
+}
+}  // namespace
+
 CaptureStderr::CaptureStderr() {
+  capture_lock().lock();
+  held_ = true;
   std::fflush(stderr);
   std::cerr.flush();
   file_ = std::tmpfile();
@@ -31,12 +42,17 @@ std::string CaptureStderr::text() {
 }
 
 void CaptureStderr::restore() {
-  if (saved_fd_ < 0) return;
-  std::fflush(stderr);
-  std::cerr.flush();
-  ::dup2(saved_fd_, STDERR_FILENO);
-  ::close(saved_fd_);
-  saved_fd_ = -1;
+  if (saved_fd_ >= 0) {
+    std::fflush(stderr);
+    std::cerr.flush();
+    ::dup2(saved_fd_, STDERR_FILENO);
+    ::close(saved_fd_);
+    saved_fd_ = -1;
+  }
+  if (held_) {
+    held_ = false;
+    capture_lock().unlock();
+  }
 }
 
 }  // namespace fvx

@@ -14,6 +14,7 @@
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/io/cloud_header.hpp"
+#include "save_pcd.hpp"
 
 namespace fvx::io {
 namespace {
@@ -100,7 +101,7 @@ void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& poin
   cloud.sensor_origin_ = Eigen::Vector4f(float(t.x()), float(t.y()), float(t.z()), 0.0f);
   cloud.sensor_orientation_ = Eigen::Quaterniond(T_world_sensor.rotation()).cast<float>();
   write_path_atomically(path, [&](const std::string& temp) {
-    if (pcl::io::savePCDFileBinary(temp, cloud) != 0) throw FileError(path, "cannot write PCD");
+    save_pcd_binary(temp, cloud, path);
   });
 }
 

@@ -9,6 +9,7 @@
 #include "fvx/core/capture_stderr.hpp"
 #include "fvx/core/error.hpp"
 #include "fvx/io/image_header.hpp"
+#include "save_png.hpp"
 
 namespace fvx::io {
 
@@ -48,15 +49,7 @@ DepthImage read_depth_image(const std::string& path) {
 void write_depth_png(const std::string& path, const DepthImage& depth) {
   FVX_ASSERT(depth.raw.size() == std::size_t(depth.width) * depth.height, "depth image size");
   const cv::Mat image(depth.height, depth.width, CV_16UC1, const_cast<std::uint16_t*>(depth.raw.data()));
-  write_path_atomically(path, [&](const std::string& temp) {
-    bool ok = false;
-    try {
-      ok = cv::imwrite(temp, image);
-    } catch (const cv::Exception& e) {
-      throw FileError(path, std::string("cannot write the PNG: ") + e.what());
-    }
-    if (!ok) throw FileError(path, "cannot write the PNG");
-  });
+  write_path_atomically(path, [&](const std::string& temp) { save_png(temp, image, path); });
 }
 
 }  // namespace fvx::io

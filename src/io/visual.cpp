@@ -14,6 +14,8 @@
 
 #include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
+#include "save_pcd.hpp"
+#include "save_png.hpp"
 
 namespace fvx::io {
 
@@ -44,8 +46,8 @@ void write_colored_cloud(const std::string& path, const std::vector<Eigen::Vecto
           out << "# .PCD v0.7 - written by fvx\nVERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\n"
                  "COUNT 1 1 1 1\nWIDTH 0\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 0\nDATA ascii\n";
         });
-      } else if (pcl::io::savePCDFileBinary(temp, cloud) != 0) {
-        throw FileError(path, "cannot write PCD");
+      } else {
+        save_pcd_binary(temp, cloud, path);
       }
     });
   } else {
@@ -120,7 +122,7 @@ void write_top_view_png(const std::string& path, double cell_m, const std::vecto
                 cv::Point(34, y + 14), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
   }
   write_path_atomically(path, [&](const std::string& temp) {
-    if (!cv::imwrite(temp, image)) throw FileError(path, "cannot write the PNG");
+    save_png(temp, image, path);
   });
 }
 
@@ -137,7 +139,7 @@ void write_png(const std::string& path, const RgbImage& image) {
     cv::putText(bgr, t.text, cv::Point(t.x_px, t.y_px), cv::FONT_HERSHEY_SIMPLEX, t.scale,
                 cv::Scalar(t.colour[2], t.colour[1], t.colour[0]), 1, cv::LINE_AA);
   write_path_atomically(path, [&](const std::string& temp) {
-    if (!cv::imwrite(temp, bgr)) throw FileError(path, "cannot write the PNG");
+    save_png(temp, bgr, path);
   });
 }
 
@@ -194,7 +196,7 @@ void write_line_plot_png(const std::string& path, const std::string& title, cons
     text(series[s].name + last, left + 28, y, 0.45);
   }
   write_path_atomically(path, [&](const std::string& temp) {
-    if (!cv::imwrite(temp, image)) throw FileError(path, "cannot write the PNG");
+    save_png(temp, image, path);
   });
 }
 

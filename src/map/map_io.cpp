@@ -4,6 +4,7 @@
 #include <octomap/OcTreeStamped.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +89,7 @@ void OccupancyMap::save(const std::string& path) const {
   const bool binary = lowercase_extension(path) == ".bt";
   write_file_atomically(path, [&](std::ostream& out) {
     CaptureStderr capture;
+    errno = 0;  // what a failed write leaves here says why (write_failure)
     bool ok;
     if (binary) {
       // writeBinary thresholds and prunes the tree it writes; do that on a copy so the map
@@ -97,7 +99,7 @@ void OccupancyMap::save(const std::string& path) const {
     } else {
       ok = impl_->tree.write(out);
     }
-    if (!ok || !out) throw FileError(path, "cannot write the map" + octomap_said(capture));
+    if (!ok || !out) throw FileError(path, "cannot write the map" + write_failure(errno) + octomap_said(capture));
   });
 }
 

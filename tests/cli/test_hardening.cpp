@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -68,6 +69,35 @@ TEST(Hardening, AReportThatCannotBeWrittenIsAFailure) {
     EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1) << command;
     EXPECT_NE(slurp(dir / "err.txt").find("cannot write the report to standard output"), std::string::npos) << command;
   }
+}
+
+// A disk that fills up while fvx writes, made with a file size limit (writes past it fail
+// with EFBIG, as on a full disk with ENOSPC; SIGXFSZ ignored so that the write fails instead
+// of the process dying): one line naming the file and why, exit 1, and nothing left behind,
+// not even the temporary beside the output. PCL threw from its writer here, which reached the
+// user as "unexpected error: [pcl::PCDWriter::writeBinary] Error during raw_fallocate ()!".
+// Exit 1 and one line for maps, clouds (PCD, PLY), reports and pictures.
+TEST(Hardening, AFullDiskIsNamedOnOneLineAndLeavesNoFile) {
+  const TempDir dir;
+  make_map(dir);
+  const std::string full = "trap '' XFSZ; ulimit -f 4; ";  // 2 KiB in sh's 512-byte blocks
+  auto files = [&] {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path())) names.push_back(entry.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const std::vector<std::string> before = files();
+  expect_one_line(run_fvx(dir, "simulate builtin:crates --look-at 0.1,0,0.9,0.8,0,0.15 -o a.pcd", full), 1,
+                  "a.pcd: cannot write PCD: no room for the file");
+  expect_one_line(run_fvx(dir, "integrate " + sample_scan(0) + " -o n.bt", full), 1,
+                  "n.bt: cannot write the map: File too large");
+  expect_one_line(run_fvx(dir, "voids m.bt --cloud v.pcd", full), 1, "v.pcd: cannot write PCD: no room for the file");
+  expect_one_line(run_fvx(dir, "voids m.bt -o v.json", full), 1, "v.json: cannot write: File too large");
+  expect_one_line(run_fvx(dir, "voids m.bt --cloud v.ply", full), 1, "v.ply: cannot write: File too large");
+  // libpng printed "libpng error: Write Error" on a line of its own before this one.
+  expect_one_line(run_fvx(dir, "voids m.bt --picture p.png", full), 1, "p.png: cannot write the PNG: File too large");
+  EXPECT_EQ(files(), before);
 }
 
 TEST(Hardening, PipesAndDevicesAreNotReadAsFiles) {

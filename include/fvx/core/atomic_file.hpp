@@ -23,6 +23,10 @@ void write_text_atomically(const std::string& path, const std::string& text);
 void write_path_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 
+/// Why a write failed, from the errno it left: ": No space left on device" (ENOSPC), ": File
+/// too large" (EFBIG, a file size limit), …; "" when errno is 0.
+std::string write_failure(int errno_value);
+
 /// The extension of `path` in lower case, with its dot (".pcd"), or "" when it has none.
 std::string lowercase_extension(const std::string& path);
 
