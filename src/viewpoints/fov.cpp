@@ -43,8 +43,8 @@ double ray_area_at_1m(const io::Intrinsics& K, int cols, int rows) {
   return (double(K.width) / cols / std::abs(K.fx)) * (double(K.height) / rows / std::abs(K.fy));
 }
 
-double CoarseFan::full_hits_per_hit(double depth_m, const Eigen::Vector3d& d_world) const {
-  const double cube_shadow_m2 = d_world.cwiseAbs().sum() * cell_m * cell_m;
+double CoarseFan::full_hits_per_hit(double depth_m, double shadow_factor) const {
+  const double cube_shadow_m2 = shadow_factor * cell_m * cell_m;
   const double z2 = std::max(depth_m * depth_m, 1e-12);
   const double p_coarse = std::min(1.0, cube_shadow_m2 / (z2 * ray_area_at_1m2));
   const double p_full = std::min(1.0, cube_shadow_m2 / (z2 * full_ray_area_at_1m2));
@@ -183,12 +183,14 @@ FovScorer::Score FovScorer::score(const Eigen::Isometry3d& T_world_sensor, Works
         (grid_.center_of(grid_.key(hit)) - origin).dot(axis) < depth_min_m_)
       continue;
     if (blocked) continue;
+    const double shadow_factor = d.cwiseAbs().sum();  // CoarseFan::full_hits_per_hit
     for (const std::size_t i : ws.ray_targets) {
       if (counted(i)) continue;  // a ray may cross a cell twice only by rounding; count once
       ws.counted_bits[i >> 6] |= std::uint64_t(1) << (i & 63);
       ws.counted.push_back(i);
       if (coarse)  // in ray order: the same sum on any thread
-        s.full_fan_estimate += coarse->full_hits_per_hit((grid_.center_of(grid_.key(i)) - origin).dot(axis), d);
+        s.full_fan_estimate +=
+            coarse->full_hits_per_hit((grid_.center_of(grid_.key(i)) - origin).dot(axis), shadow_factor);
     }
   }
   s.targets_seen = ws.counted.size();

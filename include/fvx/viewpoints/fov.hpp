@@ -51,8 +51,9 @@ struct CoarseFan {
   double cell_m = 0.0;                ///< the grid's resolution
 
   /// The full fan's expected hits per hit of this fan on a cell whose centre lies depth_m
-  /// deep, crossed by a ray along unit world direction d_world.
-  double full_hits_per_hit(double depth_m, const Eigen::Vector3d& d_world) const;
+  /// deep, crossed by a ray whose unit world direction d has shadow_factor = |d_x| + |d_y| +
+  /// |d_z| (σ / c²; the scorer takes it once per ray).
+  double full_hits_per_hit(double depth_m, double shadow_factor) const;
 };
 /// `cols` × `rows` rays of K that estimate the U of a `full_cols` × `full_rows` fan on a grid
 /// of `cell_m` cells.

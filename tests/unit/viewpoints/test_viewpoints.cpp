@@ -397,7 +397,8 @@ TEST(CoarseFan, EstimatesTheFullFansUAtEveryDistance) {
   const map::DenseGrid grid(empty, Eigen::AlignedBox3d(Eigen::Vector3d(-1.0, -1.0, -0.1), Eigen::Vector3d(1.0, 1.0, 3.8)));
   const io::Intrinsics K;
   const CoarseFan coarse = coarse_fan(K, 40, 30, 80, 60, R);
-  const Eigen::Vector3d along_z = Eigen::Vector3d::UnitZ(), diagonal = Eigen::Vector3d::Ones().normalized();
+  // Shadow factors |d_x| + |d_y| + |d_z| of a ray along an axis and along the diagonal.
+  const double along_z = 1.0, diagonal = Eigen::Vector3d::Ones().normalized().cwiseAbs().sum();
   EXPECT_DOUBLE_EQ(coarse.full_hits_per_hit(0.3, along_z), 1.0);  // both fans cross every cell
   EXPECT_NEAR(coarse.full_hits_per_hit(3.0, along_z), 4.0, 1e-12);  // neither: the ratio of ray counts
   for (double z = 0.2; z < 4.0; z += 0.1) {
