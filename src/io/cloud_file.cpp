@@ -89,7 +89,6 @@ CloudFile read_cloud(const std::string& path) {
 
 void write_pcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
                const Eigen::Isometry3d& T_world_sensor, int width, int height) {
-  silence_pcl();
   pcl::PointCloud<pcl::PointXYZ> cloud;
   cloud.reserve(points.size());
   for (const auto& p : points) cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
