@@ -99,6 +99,13 @@ std::size_t ExplorationScore::observable_void_cells() const {
   return std::size_t(std::count(in_hull_.begin(), in_hull_.end(), true));
 }
 
+std::vector<Eigen::Vector3d> ExplorationScore::observable_void_centres_m() const {
+  std::vector<Eigen::Vector3d> centres;
+  for (std::size_t c = 0; c < observable_.size(); ++c)
+    if (in_hull_[c]) centres.push_back(observable_[c]);
+  return centres;
+}
+
 void ExplorationScore::restrict_to_views(const GroundTruth& gt, const std::vector<Eigen::Isometry3d>& T_world_sensor,
                                          const std::vector<Eigen::Vector3d>& rays_sensor, double depth_min_m,
                                          double depth_max_m, unsigned threads) {

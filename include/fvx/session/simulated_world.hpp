@@ -51,6 +51,7 @@ class SimulatedWorld {
   /// A view's table row with its ground-truth columns (revealed comes with the next view).
   ViewRow row_of(const ViewRecord& v, const map::OccupancyMap& map) const;
   const sim::ExplorationScore& score() const { return *score_; }
+  const sim::GroundTruth& ground_truth() const { return *gt_; }
 
  private:
   Eigen::AlignedBox3d S_;

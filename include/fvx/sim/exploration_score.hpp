@@ -56,6 +56,8 @@ class ExplorationScore {
   const std::vector<Eigen::Vector3d>& observable_centres_m() const { return observable_; }
   /// Observable cells inside the hull of the scene's surfaces in S (see the constructor).
   std::size_t observable_void_cells() const;
+  /// Those cells' centres (world frame), in the order the constructor found them.
+  std::vector<Eigen::Vector3d> observable_void_centres_m() const;
   /// After restrict_to_views: the target's surface cells (in its box above its lowest cell)
   /// that some of those poses would measure. 0: no pose of the arm can see the target; empty
   /// without a target (no warning is due then).

@@ -1,0 +1,214 @@
+// How few views could reach 95 % of a suite scene's observable void volume at all? A
+// clairvoyant greedy planner on the ground truth: from the loop's own first view, each next
+// view is the pose of the arm's capability map (the poses that define "observable") that
+// reveals the most observable void cells not yet revealed, by the Kinect's rule on the ground
+// truth (a ray reveals the cells it crosses when it measures a surface within the sensor's
+// depths). It knows every surface, so no planner that reads only the map does better with
+// the same poses and the same fan, up to greedy's own gap to the best sequence (issue 17's
+// "median of at most 7 views"; README, "Exploration over a scene suite").
+//
+//   bench_clairvoyant CAPMAP.fcm URDF FIRST LAST [FAN_COLS FAN_ROWS]
+//
+// One line per scene builtin:suite/N, N = FIRST..LAST (fvx explore's defaults: 2.5 cm, the
+// Kinect's intrinsics and depths, seed 1, the arm at the scene's base); FAN default 160 x 120.
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <thread>
+
+#include "fvx/core/pose.hpp"
+#include "fvx/map/occupancy_map.hpp"
+#include "fvx/core/ray_box.hpp"
+#include "fvx/core/threads.hpp"
+#include "fvx/map/dense_grid.hpp"
+#include "fvx/nbv/loaded_arm.hpp"
+#include "fvx/session/simulated_world.hpp"
+#include "fvx/session/start.hpp"
+#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/viewpoints/fov.hpp"
+
+namespace {
+
+using namespace fvx;
+using CellSet = std::vector<std::uint32_t>;  // sorted numbers of observable void cells
+
+/// What a view reveals by the Kinect's rule, as fvx integrates it: a ray to the mesh's first
+/// hit, if its depth lies within the camera's, knows every cell it crosses up to the hit (the
+/// ground truth's voxels are fatter than the surface: a ray may pass a solid cell's empty part).
+class Reveal {
+ public:
+  Reveal(const sim::Scene& scene, const sim::GroundTruth& gt, const std::vector<Eigen::Vector3d>& void_centres,
+         const io::DepthCamera& camera)
+      : caster_(sim::make_ray_caster(scene.mesh)), truth_(gt.to_map()), camera_(camera),
+        grid_(truth_, box_of(gt)), number_(grid_.cell_count(), -1) {
+    const double R = gt.resolution_m();
+    for (std::size_t c = 0; c < void_centres.size(); ++c) {
+      const auto key = truth_.key_of(void_centres[c]);
+      if (!key || !grid_.contains(*key)) continue;
+      number_[grid_.index(*key)] = std::int32_t(c);
+      read_box_m_.extend(void_centres[c] - Eigen::Vector3d::Constant(R));
+      read_box_m_.extend(void_centres[c] + Eigen::Vector3d::Constant(R));
+    }
+  }
+
+  /// Per pose, the observable void cells the fan `rays_sensor` (depth 1 along z) reveals.
+  std::vector<CellSet> sets(const std::vector<Eigen::Isometry3d>& poses,
+                            const std::vector<Eigen::Vector3d>& rays_sensor) const {
+    std::vector<CellSet> out(poses.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t p = next++; p < poses.size(); p = next++) out[p] = one(poses[p], rays_sensor);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < core::worker_count(0); ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    return out;
+  }
+
+ private:
+  static Eigen::AlignedBox3d box_of(const sim::GroundTruth& gt) {
+    const double R = gt.resolution_m();
+    const Eigen::Vector3d lo = gt.center_of(gt.first_cell()) - Eigen::Vector3d::Constant(R / 2);
+    return Eigen::AlignedBox3d(lo, lo + gt.size().cast<double>() * R);
+  }
+
+  CellSet one(const Eigen::Isometry3d& T, const std::vector<Eigen::Vector3d>& rays_sensor) const {
+    CellSet set;
+    for (const Eigen::Vector3d& ray : rays_sensor) {  // ray.z() == 1: its length per metre of depth
+      const Eigen::Vector3d d = (T.linear() * ray).normalized();
+      if (ray_box_exit(read_box_m_, T.translation(), d, camera_.depth_max_m * ray.norm()) < 0) continue;
+      const sim::Hit hit = caster_->cast(T.translation().cast<float>(), d.cast<float>(), 0.0f,
+                                         float(camera_.depth_max_m * ray.norm()));
+      if (!hit.hit() || double(hit.distance) < camera_.depth_min_m * ray.norm()) continue;
+      grid_.walk_cells(grid_.states(), T.translation(), d, double(hit.distance), [&](std::size_t i, std::uint8_t) {
+        if (number_[i] >= 0) set.push_back(std::uint32_t(number_[i]));
+        return true;
+      });
+    }
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+    return set;
+  }
+
+  std::unique_ptr<sim::RayCaster> caster_;
+  map::OccupancyMap truth_;
+  io::DepthCamera camera_;
+  map::DenseGrid grid_;
+  std::vector<std::int32_t> number_;
+  Eigen::AlignedBox3d read_box_m_;
+};
+
+/// Clairvoyant greedy from the first view (the last pose): each next view the pose whose
+/// dense fan reveals the most cells not yet revealed, among the kScreened poses whose coarse
+/// fan does. The share of `total` revealed after each view (view 1 = the first).
+std::vector<double> greedy_cover(const Reveal& reveal, const std::vector<Eigen::Isometry3d>& poses,
+                                 const std::vector<CellSet>& coarse, const std::vector<Eigen::Vector3d>& dense_rays,
+                                 std::size_t total, int views) {
+  constexpr std::size_t kScreened = 64;
+  std::vector<char> covered(total, 0);
+  std::size_t count = 0;
+  auto fresh = [&](const CellSet& s) {
+    std::size_t n = 0;
+    for (const std::uint32_t c : s) n += !covered[c];
+    return n;
+  };
+  auto take = [&](const CellSet& s) {
+    for (const std::uint32_t c : s) count += !covered[c], covered[c] = 1;
+  };
+  take(reveal.sets({poses.back()}, dense_rays)[0]);
+  std::vector<double> shares = {double(count) / double(total)};
+  std::vector<std::size_t> order(poses.size());
+  for (int v = 2; v <= views; ++v) {
+    std::vector<std::size_t> gain(poses.size());
+    for (std::size_t p = 0; p < poses.size(); ++p) gain[p] = fresh(coarse[p]), order[p] = p;
+    const std::size_t k = std::min(kScreened, order.size());
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k), order.end(),
+                      [&](std::size_t l, std::size_t r) { return gain[l] > gain[r] || (gain[l] == gain[r] && l < r); });
+    std::vector<Eigen::Isometry3d> screened;
+    for (std::size_t i = 0; i < k; ++i) screened.push_back(poses[order[i]]);
+    const std::vector<CellSet> dense = reveal.sets(screened, dense_rays);
+    const auto best = std::max_element(dense.begin(), dense.end(),
+                                       [&](const CellSet& l, const CellSet& r) { return fresh(l) < fresh(r); });
+    take(*best);
+    shares.push_back(double(count) / double(total));
+  }
+  return shares;
+}
+
+void run_scene(int n, const std::string& capmap, const std::string& urdf, int cols, int rows) {
+  const sim::Scene scene = sim::scene_from("builtin:suite/" + std::to_string(n), "");
+  const double deg = M_PI / 180.0;
+  const auto& b = scene.info.bases.front();
+  nbv::LoadedArm arm;
+  nbv::load_arm(capmap, urdf, pose_from_xyz_rpy(b[0], b[1], b[2], b[3] * deg, b[4] * deg, b[5] * deg),
+                "bench_clairvoyant", arm);
+  const io::DepthCamera camera;  // fvx explore's default sensor
+  const nbv::Config defaults;
+  const Eigen::AlignedBox3d S = *scene.info.search_space;
+  const session::SimulatedWorld world(scene, 0.025, S, std::nullopt, arm.T_world_base,
+                                      S.center() - Eigen::Vector3d(0, 0, 0.1), arm.reach, camera,
+                                      defaults.clearance_m, 1, 0, [](const std::string&) {});
+  const sim::GroundTruth& gt = world.ground_truth();
+  std::vector<Eigen::Isometry3d> poses = session::capmap_view_poses(*arm.reach, [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3i cell = gt.cell_of(p);
+    return gt.contains(cell) && gt.solid(cell);
+  });
+  poses.push_back(world.start());
+  const std::vector<Eigen::Vector3d> voids = world.score().observable_void_centres_m();
+  if (voids.empty()) {
+    std::printf("| suite/%d | 0 | - | - | - | - | - | - |\n", n);
+    return;
+  }
+  const Reveal reveal(scene, gt, voids, camera);
+  const std::vector<CellSet> coarse = reveal.sets(poses, viewpoints::ray_fan(camera.intrinsics, 20, 15));
+  const std::vector<Eigen::Vector3d> dense_rays = viewpoints::ray_fan(camera.intrinsics, cols, rows);
+  std::vector<char> any(voids.size(), 0);
+  for (const CellSet& s : coarse)
+    for (const std::uint32_t c : s) any[c] = 1;
+  const double coverable = double(std::count(any.begin(), any.end(), 1)) / double(voids.size());
+  const std::vector<double> shares = greedy_cover(reveal, poses, coarse, dense_rays, voids.size(), 15);
+  const auto reached = std::find_if(shares.begin(), shares.end(), [](double s) { return s >= 0.95; });
+  const std::string to95 = reached == shares.end() ? ">15" : std::to_string(reached - shares.begin() + 1);
+  // The first view with every pixel of the image: what the dense fan misses of a real frame.
+  const io::Intrinsics& K = camera.intrinsics;
+  const double first_full =
+      double(reveal.sets({poses.back()}, viewpoints::ray_fan(K, K.width, K.height))[0].size()) / double(voids.size());
+  // The loop's own first view: the rendered frame integrated into a map, as fvx explore does.
+  const session::Sensor kinect = world.kinect(sim::SensorConfig::of(camera, 1, 0));
+  std::vector<Eigen::Vector3f> points_world;
+  for (const Eigen::Vector3d& p : kinect(world.start(), 1)) points_world.push_back((world.start() * p).cast<float>());
+  map::OccupancyMap map(0.025);
+  map.integrate(points_world, world.start().translation().cast<float>(), camera.depth_max_m, false);
+  std::size_t occupied = 0;
+  for (const Eigen::Vector3d& c : voids) {
+    const auto key = map.key_of(c);
+    occupied += key && map.state(*key) == map::VoxelState::Occupied;
+  }
+  std::printf("| suite/%d | %zu | %zu | %.3f | %.3f (%.3f; map %.3f, %.3f occupied) | %s | %.3f | %.3f |\n", n,
+              voids.size(), poses.size(), coverable, shares[0], first_full, world.score().void_known_fraction(map),
+              double(occupied) / double(voids.size()), to95.c_str(), shares[6], shares[14]);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 5 && argc != 7) {
+    std::fprintf(stderr, "usage: bench_clairvoyant CAPMAP.fcm URDF FIRST LAST [FAN_COLS FAN_ROWS]\n");
+    return 2;
+  }
+  const int first = std::atoi(argv[3]), last = std::atoi(argv[4]);
+  const int cols = argc == 7 ? std::atoi(argv[5]) : 160, rows = argc == 7 ? std::atoi(argv[6]) : 120;
+  if (first < 1 || last < first || cols < 1 || rows < 1) {
+    std::fprintf(stderr, "bench_clairvoyant: FIRST >= 1, LAST >= FIRST, a fan of at least 1 x 1\n");
+    return 2;
+  }
+  std::printf("fan %d x %d\n\n| scene | observable void cells | poses | any pose reveals | first view (every pixel) | views to 95 %% "
+              "| after 7 views | after 15 views |\n|---|---|---|---|---|---|---|---|\n",
+              cols, rows);
+  for (int n = first; n <= last; ++n) run_scene(n, argv[1], argv[2], cols, rows);
+  return 0;
+}
