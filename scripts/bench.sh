@@ -29,7 +29,10 @@
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA);
 #  - batch: the youBot map at 2.5 cm as 2, 8 and 64 shards (slabs and samples) through GNU
 #    parallel on this machine's cores against one process, and the projected time on 64
-#    slots (scripts/bench-batch.sh; FVX_REAL_DATA).
+#    slots (scripts/bench-batch.sh; FVX_REAL_DATA);
+#  - the suite's clairvoyant bound: per scene of builtin:suite/1-24, the views a greedy
+#    planner that knows the ground truth needs to 95 % of the observable void volume
+#    (bench_clairvoyant, fvx explore's defaults; about 5 min).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -103,3 +106,5 @@ if [ -f "$youbot" ]; then
 else
   echo "== capability maps: skipped ($youbot not found; set FVX_REAL_DATA)"
 fi
+echo "== the suite's clairvoyant bound (views to 95 % of the observable void volume, ground truth known)"
+"$build/tests/bench/bench_clairvoyant" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24
