@@ -196,16 +196,28 @@ void run_scene(int n, const std::string& capmap, const std::string& urdf, int co
     if (!a.frontier_voids[std::size_t(v.id)].enclosed()) open.insert(open.end(), v.cells.begin(), v.cells.end());
   std::sort(open.begin(), open.end());
   std::size_t unknown = 0, countable = 0;
+  std::vector<map::VoxelKey> observable_keys;
   for (const Eigen::Vector3d& c : voids) {
     const auto key = map.key_of(c);
-    if (!key || map.state(*key) != map::VoxelState::Unknown) continue;
+    if (!key) continue;
+    observable_keys.push_back(*key);
+    if (map.state(*key) != map::VoxelState::Unknown) continue;
     ++unknown;
     countable += std::binary_search(open.begin(), open.end(), *key);
   }
-  std::printf("| suite/%d | %zu | %zu | %.3f | %.3f (map %.3f, %.3f occupied) | %.3f | %s | %.3f | %.3f |\n", n,
-              voids.size(), poses.size(), coverable, shares[0], world.score().void_known_fraction(map),
-              double(occupied) / double(voids.size()), unknown ? double(countable) / double(unknown) : 1.0, to95.c_str(),
-              shares[6], shares[14]);
+  // And what the open voids hold: observable void, solid in the ground truth, or empty there
+  // but not observable void (a sealed inside, or outside the scene's hull).
+  std::sort(observable_keys.begin(), observable_keys.end());
+  std::size_t solid = 0, observable = 0;
+  for (const map::VoxelKey& k : open) {
+    if (std::binary_search(observable_keys.begin(), observable_keys.end(), k)) ++observable;
+    else if (const Eigen::Vector3i cell = gt.cell_of(map.center_of(k)); gt.contains(cell) && gt.solid(cell)) ++solid;
+  }
+  std::printf("| suite/%d | %zu | %zu | %.3f | %.3f (map %.3f, %.3f occupied) | %.3f; %zu: %zu / %zu / %zu | %s | %.3f "
+              "| %.3f |\n",
+              n, voids.size(), poses.size(), coverable, shares[0], world.score().void_known_fraction(map),
+              double(occupied) / double(voids.size()), unknown ? double(countable) / double(unknown) : 1.0, open.size(),
+              observable, solid, open.size() - observable - solid, to95.c_str(), shares[6], shares[14]);
   std::fflush(stdout);
 }
 
@@ -222,9 +234,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_clairvoyant: FIRST >= 1, LAST >= FIRST, a fan of at least 1 x 1\n");
     return 2;
   }
-  std::printf("fan %d x %d\n\n| scene | observable void cells | poses | any pose reveals | first view (every pixel; its frame integrated) | the rest in the map's open voids "
-              "| views to 95 %% "
-              "| after 7 views | after 15 views |\n|---|---|---|---|---|---|---|---|---|\n",
+  std::printf("fan %d x %d\n\n| scene | observable void cells | poses | any pose reveals "
+              "| first view (every pixel; its frame integrated) "
+              "| after it, the unknown observable void in the map's open voids; their cells: observable void / "
+              "solid / empty but not observable void "
+              "| views to 95 %% | after 7 views | after 15 views |\n|---|---|---|---|---|---|---|---|---|\n",
               cols, rows);
   for (int n = first; n <= last; ++n) run_scene(n, argv[1], argv[2], cols, rows);
   return 0;
