@@ -70,6 +70,7 @@ TEST(ExplorationScore, ObservableVoidCellsAreTheFreeCellsInsideTheHullOfTheSurfa
            p.z() >= 0.0125 - e && p.z() <= std::min(0.2875, top) + e;
   };
   std::size_t expected = 0, inside_crate = 0;
+  std::vector<Eigen::Vector3d> centres;  // in the constructor's order: z, then y, then x
   for (int z = 0; z < gt.size().z(); ++z)
     for (int y = 0; y < gt.size().y(); ++y)
       for (int x = 0; x < gt.size().x(); ++x) {
@@ -78,11 +79,13 @@ TEST(ExplorationScore, ObservableVoidCellsAreTheFreeCellsInsideTheHullOfTheSurfa
         if (gt.solid(cell) || !S.contains(p) || !in_section(p)) continue;
         ++expected;  // every free cell here is open to the air: the crate has no lid
         inside_crate += p.x() < 0.88;
+        centres.push_back(p);
       }
   const ExplorationScore score(gt, S, std::nullopt);
   ASSERT_GT(inside_crate, 1000u);
   ASSERT_GT(expected, inside_crate + 200);  // the gap under the slope holds void air too
   EXPECT_EQ(score.observable_void_cells(), expected);
+  EXPECT_EQ(score.observable_void_centres_m(), centres);
   EXPECT_LT(score.observable_void_cells(), score.observable_cells());  // the air above the slope is not void
   // The share known: nothing, everything, and a map that knows only the crate's upper half.
   EXPECT_DOUBLE_EQ(score.void_known_fraction(map::OccupancyMap(0.025)), 0.0);
