@@ -16,15 +16,16 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
 #include <thread>
 
 #include "fvx/core/pose.hpp"
-#include "fvx/map/occupancy_map.hpp"
 #include "fvx/core/ray_box.hpp"
 #include "fvx/core/threads.hpp"
 #include "fvx/frontier_voids/frontier_voids.hpp"
 #include "fvx/map/dense_grid.hpp"
+#include "fvx/map/occupancy_map.hpp"
 #include "fvx/nbv/loaded_arm.hpp"
 #include "fvx/session/simulated_world.hpp"
 #include "fvx/session/start.hpp"
@@ -240,6 +241,11 @@ int main(int argc, char** argv) {
               "solid / empty but not observable void "
               "| views to 95 %% | after 7 views | after 15 views |\n|---|---|---|---|---|---|---|---|---|\n",
               cols, rows);
-  for (int n = first; n <= last; ++n) run_scene(n, argv[1], argv[2], cols, rows);
+  try {
+    for (int n = first; n <= last; ++n) run_scene(n, argv[1], argv[2], cols, rows);
+  } catch (const std::exception& e) {  // a missing file, a scene the suite does not hold
+    std::fprintf(stderr, "bench_clairvoyant: %s\n", e.what());
+    return 1;
+  }
   return 0;
 }
