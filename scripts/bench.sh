@@ -32,7 +32,10 @@
 #    slots (scripts/bench-batch.sh; FVX_REAL_DATA);
 #  - the suite's clairvoyant bound: per scene of builtin:suite/1-24, the views a greedy
 #    planner that knows the ground truth needs to 95 % of the observable void volume
-#    (bench_clairvoyant, fvx explore's defaults; about 5 min).
+#    (bench_clairvoyant, fvx explore's defaults; about 5 min);
+#  - the loop's regret: at each of the first 6 views of the frontier-void loop on every suite
+#    scene, the true gain of the view it takes, of its best ranked view and of other rules'
+#    first views, against the ground truth's best (bench_regret; about 18 min).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -108,3 +111,5 @@ else
 fi
 echo "== the suite's clairvoyant bound (views to 95 % of the observable void volume, ground truth known)"
 "$build/tests/bench/bench_clairvoyant" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24
+echo "== the loop's regret (true gain of the chosen view against the ground truth's best)"
+"$build/tests/bench/bench_regret" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24 6

@@ -13,98 +13,26 @@
 // Kinect's intrinsics and depths, seed 1, the arm at the scene's base); FAN default 320 x 240
 // (a quarter of the image's pixels; the first view takes them all).
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <string>
-#include <thread>
 
 #include "fvx/core/pose.hpp"
-#include "fvx/core/ray_box.hpp"
-#include "fvx/core/threads.hpp"
 #include "fvx/frontier_voids/frontier_voids.hpp"
-#include "fvx/map/dense_grid.hpp"
 #include "fvx/map/occupancy_map.hpp"
 #include "fvx/nbv/loaded_arm.hpp"
 #include "fvx/session/simulated_world.hpp"
 #include "fvx/session/start.hpp"
 #include "fvx/sim/builtin_scenes.hpp"
 #include "fvx/viewpoints/fov.hpp"
+#include "reveal.hpp"
 
 namespace {
 
 using namespace fvx;
-using CellSet = std::vector<std::uint32_t>;  // sorted numbers of observable void cells
-
-/// What a view reveals by the Kinect's rule, as fvx integrates it: a ray to the mesh's first
-/// hit, if its depth lies within the camera's, knows every cell it crosses up to the hit (the
-/// ground truth's voxels are fatter than the surface: a ray may pass a solid cell's empty part).
-class Reveal {
- public:
-  Reveal(const sim::Scene& scene, const sim::GroundTruth& gt, const std::vector<Eigen::Vector3d>& void_centres,
-         const io::DepthCamera& camera)
-      : caster_(sim::make_ray_caster(scene.mesh)), truth_(gt.to_map()), camera_(camera),
-        grid_(truth_, box_of(gt)), number_(grid_.cell_count(), -1) {
-    const double R = gt.resolution_m();
-    for (std::size_t c = 0; c < void_centres.size(); ++c) {
-      const auto key = truth_.key_of(void_centres[c]);
-      if (!key || !grid_.contains(*key)) continue;
-      number_[grid_.index(*key)] = std::int32_t(c);
-      read_box_m_.extend(void_centres[c] - Eigen::Vector3d::Constant(R));
-      read_box_m_.extend(void_centres[c] + Eigen::Vector3d::Constant(R));
-    }
-  }
-
-  const io::DepthCamera& camera() const { return camera_; }
-
-  /// Per pose, the observable void cells the fan `rays_sensor` (depth 1 along z) reveals.
-  std::vector<CellSet> sets(const std::vector<Eigen::Isometry3d>& poses,
-                            const std::vector<Eigen::Vector3d>& rays_sensor) const {
-    std::vector<CellSet> out(poses.size());
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-      for (std::size_t p = next++; p < poses.size(); p = next++) out[p] = one(poses[p], rays_sensor);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < core::worker_count(0); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    return out;
-  }
-
- private:
-  static Eigen::AlignedBox3d box_of(const sim::GroundTruth& gt) {
-    const double R = gt.resolution_m();
-    const Eigen::Vector3d lo = gt.center_of(gt.first_cell()) - Eigen::Vector3d::Constant(R / 2);
-    return Eigen::AlignedBox3d(lo, lo + gt.size().cast<double>() * R);
-  }
-
-  CellSet one(const Eigen::Isometry3d& T, const std::vector<Eigen::Vector3d>& rays_sensor) const {
-    CellSet set;
-    for (const Eigen::Vector3d& ray : rays_sensor) {  // ray.z() == 1: its length per metre of depth
-      const Eigen::Vector3d d = (T.linear() * ray).normalized();
-      if (ray_box_exit(read_box_m_, T.translation(), d, camera_.depth_max_m * ray.norm()) < 0) continue;
-      const sim::Hit hit = caster_->cast(T.translation().cast<float>(), d.cast<float>(), 0.0f,
-                                         float(camera_.depth_max_m * ray.norm()));
-      if (!hit.hit() || double(hit.distance) < camera_.depth_min_m * ray.norm()) continue;
-      grid_.walk_cells(grid_.states(), T.translation(), d, double(hit.distance), [&](std::size_t i, std::uint8_t) {
-        if (number_[i] >= 0) set.push_back(std::uint32_t(number_[i]));
-        return true;
-      });
-    }
-    std::sort(set.begin(), set.end());
-    set.erase(std::unique(set.begin(), set.end()), set.end());
-    return set;
-  }
-
-  std::unique_ptr<sim::RayCaster> caster_;
-  map::OccupancyMap truth_;
-  io::DepthCamera camera_;
-  map::DenseGrid grid_;
-  std::vector<std::int32_t> number_;
-  Eigen::AlignedBox3d read_box_m_;
-};
+using bench::CellSet;
+using bench::Reveal;
 
 /// Clairvoyant greedy from the first view (the last pose, every pixel): each next view the pose whose
 /// dense fan reveals the most cells not yet revealed, among the kScreened poses whose coarse
@@ -206,19 +134,26 @@ void run_scene(int n, const std::string& capmap, const std::string& urdf, int co
     ++unknown;
     countable += std::binary_search(open.begin(), open.end(), *key);
   }
-  // And what the open voids hold: observable void, solid in the ground truth, or empty there
-  // but not observable void (a sealed inside, or outside the scene's hull).
+  // And what the open voids hold: observable void, solid in the ground truth, observable air
+  // outside the scene's hull (the map's hull takes in the floor and walls, the metric's only
+  // the surfaces in S), or neither (a sealed inside, space no pose measures).
   std::sort(observable_keys.begin(), observable_keys.end());
-  std::size_t solid = 0, observable = 0;
+  std::vector<map::VoxelKey> air;  // every observable cell, in the hull or not
+  for (const Eigen::Vector3d& c : world.score().observable_centres_m())
+    if (const auto key = map.key_of(c)) air.push_back(*key);
+  std::sort(air.begin(), air.end());
+  std::size_t solid = 0, observable = 0, outside = 0;
   for (const map::VoxelKey& k : open) {
     if (std::binary_search(observable_keys.begin(), observable_keys.end(), k)) ++observable;
     else if (const Eigen::Vector3i cell = gt.cell_of(map.center_of(k)); gt.contains(cell) && gt.solid(cell)) ++solid;
+    else outside += std::binary_search(air.begin(), air.end(), k);
   }
-  std::printf("| suite/%d | %zu | %zu | %.3f | %.3f (map %.3f, %.3f occupied) | %.3f; %zu: %zu / %zu / %zu | %s | %.3f "
-              "| %.3f |\n",
+  std::printf("| suite/%d | %zu | %zu | %.3f | %.3f (map %.3f, %.3f occupied) | %.3f; %zu: %zu / %zu / %zu / %zu | %s "
+              "| %.3f | %.3f |\n",
               n, voids.size(), poses.size(), coverable, shares[0], world.score().void_known_fraction(map),
               double(occupied) / double(voids.size()), unknown ? double(countable) / double(unknown) : 1.0, open.size(),
-              observable, solid, open.size() - observable - solid, to95.c_str(), shares[6], shares[14]);
+              observable, solid, outside, open.size() - observable - solid - outside, to95.c_str(), shares[6],
+              shares[14]);
   std::fflush(stdout);
 }
 
@@ -238,7 +173,7 @@ int main(int argc, char** argv) {
   std::printf("fan %d x %d\n\n| scene | observable void cells | poses | any pose reveals "
               "| first view (every pixel; its frame integrated) "
               "| after it, the unknown observable void in the map's open voids; their cells: observable void / "
-              "solid / empty but not observable void "
+              "solid / observable air outside the hull / neither "
               "| views to 95 %% | after 7 views | after 15 views |\n|---|---|---|---|---|---|---|---|---|\n",
               cols, rows);
   try {
