@@ -42,7 +42,8 @@ Eigen::AlignedBox3d reach_box_world(const Reach& reach) {
 /// The sensor's box without --view-bounds: the known cells' box and, when unknown cells
 /// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well, as far
 /// as it lies within the sensor's range of the search space (an eye farther away sees no
-/// void; a far base would otherwise stretch the grid across the distance).
+/// void; a far base would otherwise stretch the grid across the distance) and no lower than
+/// the known cells.
 Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
                                         const std::optional<Reach>& reach, const Config& config) {
   if (config.view_bounds_m) return *config.view_bounds_m;
@@ -50,7 +51,14 @@ Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const 
   const Eigen::Vector3d range = Eigen::Vector3d::Constant(config.sensor.depth_max_m);
   const Eigen::AlignedBox3d in_range(search_space.min() - range, search_space.max() + range);
   const Eigen::AlignedBox3d reach_in_range = reach_box_world(*reach).intersection(in_range);
-  return reach_in_range.isEmpty() ? known : known.merged(reach_in_range);
+  if (reach_in_range.isEmpty()) return known;
+  // Sideways and upwards, not downwards: below the lowest cell any ray reached lies what the
+  // scene stands on (the floor's underside), not air a sensor can stand in. On the suite the
+  // exhaustive planner took views from under the floor, up through its unseen cells, which
+  // measured nothing (README, "Exploration over a scene suite").
+  Eigen::AlignedBox3d bounds = known.merged(reach_in_range);
+  bounds.min().z() = known.min().z();
+  return bounds;
 }
 
 /// The view bounds within the world box around the arm's reachable voxels.
