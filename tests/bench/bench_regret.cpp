@@ -81,6 +81,9 @@ class Scene {
     for (const Eigen::Vector3d& c : world_->score().observable_centres_m())
       if (const auto key = keys.key_of(c)) observable_air_.push_back(*key);
     std::sort(observable_air_.begin(), observable_air_.end());
+    for (const Eigen::Vector3d& c : centres_)
+      if (const auto key = keys.key_of(c)) observable_void_.push_back(*key);
+    std::sort(observable_void_.begin(), observable_void_.end());
     if (centres_.empty()) return;
     reveal_ = std::make_unique<Reveal>(scene_, gt, centres_, camera_);
     coarse_ = reveal_->sets(poses_, viewpoints::ray_fan(camera_.intrinsics, 20, 15));
@@ -101,7 +104,8 @@ class Scene {
       if (!v.chosen) return;
       std::vector<double> gains = {clairvoyant(state.map)};
       const std::vector<nbv::View>& ranked = v.step.nbv.views;
-      gains.push_back(gain(state.map, ranked[*v.chosen].T_world_sensor));
+      const CellSet chosen = reveal_->sets({ranked[*v.chosen].T_world_sensor}, dense_rays_)[0];
+      gains.push_back(double(unknown_of(state.map, chosen)));
       std::vector<Eigen::Isometry3d> all;
       for (const nbv::View& r : ranked) all.push_back(r.T_world_sensor);
       gains.push_back(best_gain(state.map, all));
@@ -117,7 +121,7 @@ class Scene {
         gains.push_back(r.views.empty() ? 0.0 : gain(state.map, r.views.front().T_world_sensor));
       }
       for (const double g : rescored(state, v.step.analysis, all)) gains.push_back(g);
-      print_row(n, v.view, gains, columns, why(state.map, ranked[*v.chosen]));
+      print_row(n, v.view, gains, columns, why(state.map, ranked[*v.chosen], chosen));
     });
   }
 
@@ -133,11 +137,11 @@ class Scene {
     return n;
   }
   double gain(const map::OccupancyMap& map, const Eigen::Isometry3d& T) const {
-    return double(unknown_of(map, reveal_->sets({T}, dense())[0]));
+    return double(unknown_of(map, reveal_->sets({T}, dense_rays_)[0]));
   }
   double best_gain(const map::OccupancyMap& map, const std::vector<Eigen::Isometry3d>& poses) const {
     std::size_t best = 0;
-    for (const CellSet& s : reveal_->sets(poses, dense())) best = std::max(best, unknown_of(map, s));
+    for (const CellSet& s : reveal_->sets(poses, dense_rays_)) best = std::max(best, unknown_of(map, s));
     return double(best);
   }
   double clairvoyant(const map::OccupancyMap& map) const {
@@ -150,16 +154,10 @@ class Scene {
     for (std::size_t i = 0; i < k; ++i) screened.push_back(poses_[by_gain[i].second]);
     return best_gain(map, screened);
   }
-  std::vector<Eigen::Vector3d> dense() const { return viewpoints::ray_fan(camera_.intrinsics, 320, 240); }
-
   /// What the chosen view's U cells are in the ground truth: observable void (and how many of
-  /// those its true view reveals), solid, or empty but not observable void.
-  std::string why(const map::OccupancyMap& map, const nbv::View& view) const {
-    std::vector<map::VoxelKey> observable;
-    for (const Eigen::Vector3d& c : centres_)
-      if (const auto key = map.key_of(c)) observable.push_back(*key);
-    std::sort(observable.begin(), observable.end());
-    const CellSet revealed = reveal_->sets({view.T_world_sensor}, dense())[0];
+  /// those its true view, `revealed`, reveals), solid, or empty but not observable void.
+  std::string why(const map::OccupancyMap& map, const nbv::View& view, const CellSet& revealed) const {
+    const std::vector<map::VoxelKey>& observable = observable_void_;
     std::vector<map::VoxelKey> revealed_keys;
     for (const std::uint32_t c : revealed) revealed_keys.push_back(*map.key_of(centres_[c]));
     std::sort(revealed_keys.begin(), revealed_keys.end());
@@ -204,7 +202,7 @@ class Scene {
     for (const map::VoxelKey& k : state.hidden_void_cells)
       if (grid.contains(k)) target[grid.index(k)] = 0;
     const std::vector<Eigen::Vector3d> rays = viewpoints::ray_fan(camera_.intrinsics, 80, 60);
-    const std::vector<CellSet> truth = reveal_->sets(candidates, dense());
+    const std::vector<CellSet> truth = reveal_->sets(candidates, dense_rays_);
     std::vector<std::vector<double>> scores(candidates.size());
     for (std::size_t p = 0; p < candidates.size(); ++p) {
       std::vector<std::size_t> marked;
@@ -243,7 +241,7 @@ class Scene {
       grid.walk(eye, d, camera_.depth_max_m * ray.norm(), [&](std::size_t i, map::VoxelState s) {
         if (s == map::VoxelState::Occupied) return false;
         if (s != map::VoxelState::Unknown) return true;
-        const double t = (grid.center_of(key_at(grid, i)) - eye).dot(d);
+        const double t = (grid.center_of(grid.key(i)) - eye).dot(d);
         if (first_unknown == INFINITY) first_unknown = t;
         if (target[i]) {
           const bool near = first_unknown < min_range;
@@ -267,14 +265,6 @@ class Scene {
       out.push_back(sum);
     }
     return out;
-  }
-
-  static map::VoxelKey key_at(const map::DenseGrid& grid, std::size_t i) {
-    const Eigen::Vector3i& n = grid.size();
-    const std::size_t x = i % std::size_t(n.x()), y = i / std::size_t(n.x()) % std::size_t(n.y()),
-                      z = i / (std::size_t(n.x()) * std::size_t(n.y()));
-    const map::VoxelKey lo = grid.min_key();
-    return {std::uint16_t(lo.x + x), std::uint16_t(lo.y + y), std::uint16_t(lo.z + z)};
   }
 
  public:
@@ -314,6 +304,9 @@ class Scene {
   std::vector<Eigen::Isometry3d> poses_;
   std::vector<Eigen::Vector3d> centres_;
   std::vector<map::VoxelKey> observable_air_;  ///< every observable cell, hull or not, key order
+  std::vector<map::VoxelKey> observable_void_;  ///< the observable void cells (centres_), key order
+  /// The fan a true view is cast with: a quarter of the image's pixels.
+  std::vector<Eigen::Vector3d> dense_rays_ = viewpoints::ray_fan(camera_.intrinsics, 320, 240);
   std::unique_ptr<Reveal> reveal_;
   std::vector<CellSet> coarse_;
 };
