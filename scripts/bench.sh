@@ -36,6 +36,9 @@
 #  - the loop's regret: at each of the first 6 views of the frontier-void loop on every suite
 #    scene, the true gain of the view it takes, of its best ranked view and of other rules'
 #    first views, against the ground truth's best (bench_regret; about 18 min).
+#  - ranking the candidates: at each of the first 4 views of the same loop, whether a feature
+#    of a candidate's view on the map, or a ridge regression on all of them trained leave-one-
+#    scene-out, picks candidates that reveal more than U's pick (bench_rank_features; about 6 min).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -113,3 +116,5 @@ echo "== the suite's clairvoyant bound (views to 95 % of the observable void vol
 "$build/tests/bench/bench_clairvoyant" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24
 echo "== the loop's regret (true gain of the chosen view against the ground truth's best)"
 "$build/tests/bench/bench_regret" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24 6
+echo "== ranking the candidates (features of a view on the map against its true gain)"
+"$build/tests/bench/bench_rank_features" data/arms/fvx-arm.fcm data/arms/fvx-arm.urdf 1 24 4

@@ -25,19 +25,14 @@
 #include <string>
 #include <unordered_map>
 
-#include "fvx/core/pose.hpp"
-#include "fvx/nbv/loaded_arm.hpp"
-#include "fvx/session/simulated_world.hpp"
-#include "fvx/session/start.hpp"
-#include "fvx/sim/builtin_scenes.hpp"
+#include "fvx/frontier_voids/frontier_voids.hpp"
 #include "fvx/viewpoints/fov.hpp"
-#include "reveal.hpp"
+#include "suite_loop.hpp"
 
 namespace {
 
 using namespace fvx;
 using bench::CellSet;
-using bench::Reveal;
 
 struct Variant {
   const char* label;
@@ -60,23 +55,9 @@ struct Column {
   int states = 0;
 };
 
-class Scene {
+class Scene : public bench::SuiteLoop {
  public:
-  Scene(int n, const std::string& capmap, const std::string& urdf) : scene_(sim::scene_from(suite(n), "")) {
-    const double deg = M_PI / 180.0;
-    const auto& b = scene_.info.bases.front();
-    nbv::load_arm(capmap, urdf, pose_from_xyz_rpy(b[0], b[1], b[2], b[3] * deg, b[4] * deg, b[5] * deg),
-                  "bench_regret", arm_);
-    S_ = *scene_.info.search_space;
-    world_ = std::make_unique<session::SimulatedWorld>(scene_, 0.025, S_, std::nullopt, arm_.T_world_base,
-                                                       S_.center() - Eigen::Vector3d(0, 0, 0.1), arm_.reach, camera_,
-                                                       nbv::Config{}.clearance_m, 1, 0, [](const std::string&) {});
-    const sim::GroundTruth& gt = world_->ground_truth();
-    poses_ = session::capmap_view_poses(*arm_.reach, [&](const Eigen::Vector3d& p) {
-      const Eigen::Vector3i cell = gt.cell_of(p);
-      return gt.contains(cell) && gt.solid(cell);
-    });
-    centres_ = world_->score().observable_void_centres_m();
+  Scene(int n, const std::string& capmap, const std::string& urdf) : SuiteLoop(n, capmap, urdf, "bench_regret") {
     const map::OccupancyMap keys(0.025);
     for (const Eigen::Vector3d& c : world_->score().observable_centres_m())
       if (const auto key = keys.key_of(c)) observable_air_.push_back(*key);
@@ -84,23 +65,11 @@ class Scene {
     for (const Eigen::Vector3d& c : centres_)
       if (const auto key = keys.key_of(c)) observable_void_.push_back(*key);
     std::sort(observable_void_.begin(), observable_void_.end());
-    if (centres_.empty()) return;
-    reveal_ = std::make_unique<Reveal>(scene_, gt, centres_, camera_);
-    coarse_ = reveal_->sets(poses_, viewpoints::ray_fan(camera_.intrinsics, 20, 15));
   }
-
-  bool empty() const { return centres_.empty(); }
 
   /// Runs the loop for `views` views; one table row per view after the first's search.
   void run(int n, int views, std::vector<Column>& columns) {
-    session::ExploreConfig config;
-    config.pipeline.bounds_m = S_;
-    config.pipeline.nbv.sensor = camera_;
-    config.pipeline.tie_to_search();
-    config.max_views = views;
-    config.T_world_sensor_start = world_->start();
-    const session::Sensor kinect = world_->kinect(sim::SensorConfig::of(camera_, config.seed, 0));
-    session::explore(kinect, arm_.reach, config, [&](const session::ViewRecord& v, const pipeline::State& state) {
+    explore(views, [&](const session::ViewRecord& v, const pipeline::State& state, const session::ExploreConfig& config) {
       if (!v.chosen) return;
       std::vector<double> gains = {clairvoyant(state.map)};
       const std::vector<nbv::View>& ranked = v.step.nbv.views;
@@ -126,34 +95,6 @@ class Scene {
   }
 
  private:
-  static std::string suite(int n) { return "builtin:suite/" + std::to_string(n); }
-
-  std::size_t unknown_of(const map::OccupancyMap& map, const CellSet& set) const {
-    std::size_t n = 0;
-    for (const std::uint32_t c : set) {
-      const auto key = map.key_of(centres_[c]);
-      n += key && map.state(*key) == map::VoxelState::Unknown;
-    }
-    return n;
-  }
-  double gain(const map::OccupancyMap& map, const Eigen::Isometry3d& T) const {
-    return double(unknown_of(map, reveal_->sets({T}, dense_rays_)[0]));
-  }
-  double best_gain(const map::OccupancyMap& map, const std::vector<Eigen::Isometry3d>& poses) const {
-    std::size_t best = 0;
-    for (const CellSet& s : reveal_->sets(poses, dense_rays_)) best = std::max(best, unknown_of(map, s));
-    return double(best);
-  }
-  double clairvoyant(const map::OccupancyMap& map) const {
-    constexpr std::size_t kScreened = 64;
-    std::vector<std::pair<std::size_t, std::size_t>> by_gain;  // (-gain, pose)
-    for (std::size_t p = 0; p < poses_.size(); ++p) by_gain.push_back({~unknown_of(map, coarse_[p]), p});
-    const std::size_t k = std::min(kScreened, by_gain.size());
-    std::partial_sort(by_gain.begin(), by_gain.begin() + std::ptrdiff_t(k), by_gain.end());
-    std::vector<Eigen::Isometry3d> screened;
-    for (std::size_t i = 0; i < k; ++i) screened.push_back(poses_[by_gain[i].second]);
-    return best_gain(map, screened);
-  }
   /// What the chosen view's U cells are in the ground truth: observable void (and how many of
   /// those its true view, `revealed`, reveals), solid, or empty but not observable void.
   std::string why(const map::OccupancyMap& map, const nbv::View& view, const CellSet& revealed) const {
@@ -296,19 +237,8 @@ class Scene {
     }
   }
 
-  sim::Scene scene_;
-  nbv::LoadedArm arm_;
-  io::DepthCamera camera_;  // fvx explore's default sensor
-  Eigen::AlignedBox3d S_;
-  std::unique_ptr<session::SimulatedWorld> world_;
-  std::vector<Eigen::Isometry3d> poses_;
-  std::vector<Eigen::Vector3d> centres_;
   std::vector<map::VoxelKey> observable_air_;  ///< every observable cell, hull or not, key order
   std::vector<map::VoxelKey> observable_void_;  ///< the observable void cells (centres_), key order
-  /// The fan a true view is cast with: a quarter of the image's pixels.
-  std::vector<Eigen::Vector3d> dense_rays_ = viewpoints::ray_fan(camera_.intrinsics, 320, 240);
-  std::unique_ptr<Reveal> reveal_;
-  std::vector<CellSet> coarse_;
 };
 
 }  // namespace
