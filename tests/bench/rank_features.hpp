@@ -21,6 +21,15 @@
 
 namespace fvx::bench {
 
+/// A view's features: U and Algorithm 1's utility at the viewpoint (the search's); the void
+/// cells its rays cross (each counted once, by its best ray) with no unknown cell before them,
+/// with no void cell before them (the void's face the ray meets), with fewer than three, on a
+/// ray that ends on a known occupied cell, with no unknown cell nearer than the minimum depth,
+/// and weighed 0.9^(unknown cells before); their mean depth; the voids they lie in and the
+/// sum of each void's share seen; the rays that end on a known surface, cross a void cell,
+/// end on nothing the map knows, or meet an unknown cell within the minimum depth; unknown
+/// cells outside the voids crossed (per ray); the eye's height above S and distance to its
+/// centre; the optical axis's z.
 inline constexpr std::array<const char*, 19> kFeatureNames = {
     "U", "utility_m3", "U_first", "U_void_surface", "U_void_depth3", "U_surface_rays", "U_far", "U_q0.9",
     "mean_depth_m", "voids_seen", "void_share_sum", "rays_on_surface", "rays_into_void", "rays_to_nothing",
