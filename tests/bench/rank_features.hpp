@@ -8,7 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <set>
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -157,51 +158,63 @@ class FeatureCaster {
   std::vector<Eigen::Vector3d> rays_;
 };
 
-/// One candidate's inputs to the ridge: the features, the counts over the state's largest,
-/// the cell counts as shares of U.
-inline Eigen::VectorXd ridge_inputs(const State& s, std::size_t c) {
+/// Each candidate's inputs to the ridge: the features, the counts over the state's largest,
+/// the cell counts as shares of U, and 1 (the intercept).
+inline std::vector<Eigen::VectorXd> ridge_inputs(const State& s) {
   const std::size_t n = kFeatureNames.size(), shares = kShareLast - kShareFirst + 1;
-  Eigen::VectorXd x(n + shares + 1);
-  const std::vector<double>& f = s.candidates[c].features;
-  for (std::size_t k = 0; k < n; ++k) {
-    double largest = 1e-9;
-    if (k <= kCountLast)
-      for (const Candidate& o : s.candidates) largest = std::max(largest, o.features[k]);
-    x[Eigen::Index(k)] = k <= kCountLast ? f[k] / largest : f[k];
+  std::vector<double> largest(n, 1e-9);
+  for (const Candidate& c : s.candidates)
+    for (std::size_t k = 0; k <= kCountLast; ++k) largest[k] = std::max(largest[k], c.features[k]);
+  std::vector<Eigen::VectorXd> out;
+  for (const Candidate& c : s.candidates) {
+    const std::vector<double>& f = c.features;
+    Eigen::VectorXd x(n + shares + 1);
+    for (std::size_t k = 0; k < n; ++k) x[Eigen::Index(k)] = k <= kCountLast ? f[k] / largest[k] : f[k];
+    for (std::size_t k = 0; k < shares; ++k) x[Eigen::Index(n + k)] = f[kShareFirst + k] / std::max(1.0, f[0]);
+    x[Eigen::Index(n + shares)] = 1.0;
+    out.push_back(std::move(x));
   }
-  for (std::size_t k = 0; k < shares; ++k) x[Eigen::Index(n + k)] = f[kShareFirst + k] / std::max(1.0, f[0]);
-  x[Eigen::Index(n + shares)] = 1.0;  // intercept
-  return x;
+  return out;
 }
 
-/// Ridge regression (alpha on standardised inputs) of each candidate's gain over its state's
-/// best, fitted on the states of every scene but `scene` (or all states when scene = 0).
-inline Eigen::VectorXd fit_ridge(const std::vector<State>& states, int scene, double alpha,
-                                 Eigen::VectorXd& mean, Eigen::VectorXd& scale) {
-  std::vector<Eigen::VectorXd> xs;
+/// A ridge regression (alpha on standardised inputs) of each candidate's gain over its
+/// state's best.
+struct Ridge {
+  Eigen::VectorXd w, mean, scale;
+  double predict(const Eigen::VectorXd& x) const { return w.dot((x - mean).cwiseQuotient(scale)); }
+};
+
+/// The ridge fitted on the states of every scene but `scene` (0: on all states); none when
+/// no state is left to fit on.
+inline std::optional<Ridge> fit_ridge(const std::vector<State>& states, const std::vector<std::vector<Eigen::VectorXd>>& inputs,
+                                      int scene, double alpha) {
+  std::vector<const Eigen::VectorXd*> xs;
   std::vector<double> ys;
-  for (const State& s : states) {
-    if (s.scene == scene) continue;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    if (states[i].scene == scene) continue;
     double best = 1.0;
-    for (const Candidate& c : s.candidates) best = std::max(best, c.gain);
-    for (std::size_t c = 0; c < s.candidates.size(); ++c) xs.push_back(ridge_inputs(s, c)), ys.push_back(s.candidates[c].gain / best);
+    for (const Candidate& c : states[i].candidates) best = std::max(best, c.gain);
+    for (std::size_t c = 0; c < states[i].candidates.size(); ++c)
+      xs.push_back(&inputs[i][c]), ys.push_back(states[i].candidates[c].gain / best);
   }
-  const Eigen::Index p = xs.front().size();
-  mean = Eigen::VectorXd::Zero(p), scale = Eigen::VectorXd::Ones(p);
-  for (const auto& x : xs) mean += x / double(xs.size());
+  if (xs.empty()) return std::nullopt;
+  const Eigen::Index p = xs.front()->size();
+  Ridge r{Eigen::VectorXd(), Eigen::VectorXd::Zero(p), Eigen::VectorXd::Ones(p)};
+  for (const auto* x : xs) r.mean += *x / double(xs.size());
   Eigen::VectorXd var = Eigen::VectorXd::Zero(p);
-  for (const auto& x : xs) var += (x - mean).cwiseAbs2() / double(xs.size());
-  for (Eigen::Index k = 0; k + 1 < p; ++k) scale[k] = var[k] > 1e-12 ? std::sqrt(var[k]) : 1.0;
-  mean[p - 1] = 0.0;  // the intercept stays 1
+  for (const auto* x : xs) var += (*x - r.mean).cwiseAbs2() / double(xs.size());
+  for (Eigen::Index k = 0; k + 1 < p; ++k) r.scale[k] = var[k] > 1e-12 ? std::sqrt(var[k]) : 1.0;
+  r.mean[p - 1] = 0.0;  // the intercept stays 1
   Eigen::MatrixXd A = alpha * Eigen::MatrixXd::Identity(p, p);
   A(p - 1, p - 1) = 0.0;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(p);
   for (std::size_t i = 0; i < xs.size(); ++i) {
-    const Eigen::VectorXd z = (xs[i] - mean).cwiseQuotient(scale);
+    const Eigen::VectorXd z = (*xs[i] - r.mean).cwiseQuotient(r.scale);
     A += z * z.transpose();
     b += z * ys[i];
   }
-  return A.ldlt().solve(b);
+  r.w = A.ldlt().solve(b);
+  return r;
 }
 
 /// What a rule's picks reveal: summed over the states as a share of the best pose's, and the
@@ -293,25 +306,22 @@ inline void print_evaluation(const std::vector<State>& states) {
   print_rule("the best candidate (knowing the gains)", states, argmax_per_state(states, [&](std::size_t i, std::size_t c) { return states[i].candidates[c].gain; }));
   for (std::size_t k = 0; k < kFeatureNames.size(); ++k)
     print_rule(kFeatureNames[k], states, argmax_per_state(states, [&](std::size_t i, std::size_t c) { return states[i].candidates[c].features[k]; }));
-  std::set<int> scenes;
-  for (const State& s : states) scenes.insert(s.scene);
-  std::vector<std::size_t> held_out(states.size());
-  Eigen::VectorXd mean, scale;
-  for (const int scene : scenes) {
-    const Eigen::VectorXd w = fit_ridge(states, scene, 1.0, mean, scale);
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      if (states[i].scene != scene) continue;
-      std::vector<State> one = {states[i]};
-      held_out[i] = argmax_per_state(one, [&](std::size_t, std::size_t c) {
-        return w.dot((ridge_inputs(states[i], c) - mean).cwiseQuotient(scale));
-      })[0];
-    }
-  }
-  print_rule("ridge on all features, leave one scene out", states, held_out);
-  const Eigen::VectorXd w = fit_ridge(states, 0, 1.0, mean, scale);
-  print_rule("ridge on all features, fitted to every scene (in-sample)", states, argmax_per_state(states, [&](std::size_t i, std::size_t c) {
-               return w.dot((ridge_inputs(states[i], c) - mean).cwiseQuotient(scale));
-             }));
+  std::vector<std::vector<Eigen::VectorXd>> inputs;
+  for (const State& s : states) inputs.push_back(ridge_inputs(s));
+  const auto pick_by = [&](const std::vector<std::optional<Ridge>>& model_of_state) {
+    return argmax_per_state(states, [&](std::size_t i, std::size_t c) { return model_of_state[i]->predict(inputs[i][c]); });
+  };
+  std::map<int, std::optional<Ridge>> held_out;  // per scene, the ridge fitted without it
+  for (const State& s : states)
+    if (!held_out.count(s.scene)) held_out[s.scene] = fit_ridge(states, inputs, s.scene, 1.0);
+  std::vector<std::optional<Ridge>> models;
+  for (const State& s : states) models.push_back(held_out[s.scene]);
+  if (held_out.size() > 1)
+    print_rule("ridge on all features, leave one scene out", states, pick_by(models));
+  else
+    std::printf("| ridge on all features, leave one scene out | (needs two scenes) | |\n");
+  models.assign(states.size(), fit_ridge(states, inputs, 0, 1.0));
+  print_rule("ridge on all features, fitted to every scene (in-sample)", states, pick_by(models));
   print_u_ranking(states);
 }
 
