@@ -21,6 +21,9 @@
 #    of the whole fvx replay command (files read, --search-every 0);
 #  - next best view at scale: the whole fvx nbv on the real slambook and geb079 maps, sampled
 #    against exact accumulation, seeds 1-4 (scripts/bench-nbv-scale.sh; FVX_REAL_DATA);
+#  - maps larger than the machine: the whole fvx nbv on synthetic halls of 30, 60 and 200 m at
+#    5 cm, searched whole and in a 4 m corner given as --bounds (scripts/bench-large-map.sh;
+#    FVX_BASELINE=/path/to/fvx adds another binary in the same run);
 #  - replay with a search after every view: the whole fvx replay on the 211 Redwood frames and
 #    the five slambook frames at 2.5 cm, frames/s and peak memory, and the same without any
 #    search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx adds another binary in the
@@ -63,6 +66,7 @@ else
 fi
 echo "== next best view" && "$build/tests/bench/bench_nbv" data/arms/fvx-arm.fcm 5
 echo "== next best view at scale" && FVX_REAL_DATA="$data" scripts/bench-nbv-scale.sh
+echo "== maps larger than the machine (whole and a corner as --bounds)" && scripts/bench-large-map.sh
 echo "== replay with a search after every view" && FVX_REAL_DATA="$data" scripts/bench-replay.sh
 echo "== explore: time per stage and view (paper replicas, 2.5 cm, fvx arm at (0.2, 0, 0))"
 bench_out="$(mktemp -d)"

@@ -1,9 +1,12 @@
 #include "fvx/frontier_voids/frontier_voids.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <future>
 
+#include "fvx/core/error.hpp"
+#include "fvx/core/memory.hpp"
 #include "fvx/map/key_index.hpp"
 
 #include "fvx/voids/width.hpp"
@@ -67,6 +70,52 @@ Analysis start(const map::Stats& stats, const std::optional<Eigen::AlignedBox3d>
   return a;
 }
 
+/// The box of the one-shot path's grid: the known cells' box, within S grown by two cells
+/// when S is given (a cell in S has its face-neighbours in the grid, or they lie beyond the
+/// known cells and are unknown), so that a small S on a large map reads a small grid.
+Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const std::optional<Eigen::AlignedBox3d>& bounds_m,
+                             double R) {
+  if (!bounds_m || known.isEmpty()) return known;
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(2 * R);
+  const Eigen::AlignedBox3d around(bounds_m->min() - margin, bounds_m->max() + margin);
+  return around.contains(known) ? known : around.intersection(known);
+}
+
+/// Peak bytes per cell of the box the one-shot analysis reads, a search over it included:
+/// `fvx nbv` took 39–40 B per cell on maps whose voids fill 42 % and 100 % of the box, and
+/// `fvx frontiers` 9 B (README, "Maps larger than the machine"); rounded up, so that a run
+/// refused would not have fitted.
+constexpr double kPeakBytesPerCell = 48, kPeakBytesPerCellFrontiers = 12;
+
+/// The box of the occupied cells (each leaf whole), which holds their hull and every void.
+Eigen::AlignedBox3d occupied_box_m(const map::OccupancyMap& map) {
+  Eigen::AlignedBox3d box;
+  const double R = map.resolution_m();
+  for (const map::Leaf& leaf : map.leaves())
+    if (leaf.state == map::VoxelState::Occupied) {
+      const Eigen::Vector3d lo = map.center_of(leaf.min_key) - Eigen::Vector3d::Constant(R / 2);
+      box.extend(lo).extend(lo + Eigen::Vector3d::Constant(R * leaf.size_cells));
+    }
+  return box;
+}
+
+/// Stops before the analysis allocates when `box_m` (what it reads) would need more memory
+/// than the machine has available: a map of a building at a fine resolution, searched whole.
+void check_memory(const Eigen::AlignedBox3d& box_m, double R, double bytes_per_cell) {
+  if (box_m.isEmpty()) return;
+  const Eigen::Vector3d size_m = box_m.sizes();
+  const double cells = (size_m / R).prod(), need = cells * bytes_per_cell;
+  const std::optional<std::size_t> available = core::available_memory_bytes();
+  if (!available || need <= double(*available)) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the search space holds %.0f M cells (%.1f x %.1f x %.1f m at %g m): about %.1f GiB to analyse "
+                "and search, and %.1f GiB of memory is available; give --bounds x0,y0,z0,x1,y1,z1 to search part "
+                "of the map", cells / 1e6, size_m.x(), size_m.y(), size_m.z(), R, need / double(1ull << 30),
+                double(*available) / double(1ull << 30));
+  throw Error(text);
+}
+
 /// Clusters and pairs the frontier and void cells already in `a`.
 void cluster_and_pair(const map::OccupancyMap& map, Analysis& a, bool with_voids, const voids::ClusterConfig& config,
                       int min_void_width_cells) {
@@ -108,19 +157,30 @@ Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::Al
   const std::optional<Eigen::AlignedBox3d> hull_box_m = hull_in_bounds ? bounds_m : std::nullopt;
   const map::Stats stats = map.stats();
   const Eigen::AlignedBox3d known = stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
-  if (!known.isEmpty() && (known.sizes() / map.resolution_m()).prod() > double(kMaxDenseCells)) {
-    frontiers::FrontierSet frontier_set;  // a few cells far apart: the sets hold only them
+  const Eigen::AlignedBox3d box = grid_box(known, bounds_m, map.resolution_m());
+  if (!box.isEmpty() && (box.sizes() / map.resolution_m()).prod() > double(kMaxDenseCells)) {
+    // A few cells far apart: the sets hold only them, and the voids lie between the occupied ones.
+    if (with_voids)
+      check_memory(occupied_box_m(map).intersection(bounds_m ? *bounds_m : box), map.resolution_m(), kPeakBytesPerCell);
+    frontiers::FrontierSet frontier_set;
     frontier_set.rebuild(map);
     voids::VoidSet void_set;
     if (with_voids) void_set.rebuild(map, hull_box_m);
     return analyse(map, frontier_set, with_voids ? &void_set : nullptr, bounds_m, config, min_void_width_cells);
   }
-  const map::DenseGrid grid(map, known);
+  check_memory(box, map.resolution_m(), with_voids ? kPeakBytesPerCell : kPeakBytesPerCellFrontiers);
+  const map::DenseGrid grid(map, box);
   std::future<std::vector<map::VoxelKey>> frontier_cells =  // on another core, beside the voids
       std::async(std::launch::async, [&] { return frontiers::frontier_cells(grid); });
   voids::Hull hull;
   std::vector<map::VoxelKey> void_cells;
-  if (with_voids) void_cells = voids::void_cells(grid, hull, hull_box_m);
+  const bool whole = box.min() == known.min() && box.max() == known.max();
+  if (with_voids && whole) {
+    void_cells = voids::void_cells(grid, hull, hull_box_m);
+  } else if (with_voids) {  // the grid holds part of the map: the hull comes from all of it
+    hull = voids::hull_of_map(map, hull_box_m);
+    void_cells = voids::void_cells_in(grid, hull);
+  }
   Analysis a = start(stats, bounds_m, with_voids, hull.empty());
   a.frontier_cells = map::keys_within(map, frontier_cells.get(), a.bounds_m);
   a.void_cells = map::keys_within(map, std::move(void_cells), a.bounds_m);

@@ -22,7 +22,8 @@ DenseGrid::DenseGrid(const OccupancyMap& map, const Eigen::AlignedBox3d& bounds_
   size_ = Eigen::Vector3i(hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1);
   FVX_ASSERT(double(size_.x()) * size_.y() * size_.z() < 4e9, "dense grid too large");
   states_.assign(std::size_t(size_.x()) * size_.y() * size_.z(), std::uint8_t(VoxelState::Unknown));
-  for (const Leaf& leaf : map.leaves()) {
+  const VoxelKey hi_key{std::uint16_t(hi[0]), std::uint16_t(hi[1]), std::uint16_t(hi[2])};
+  for (const Leaf& leaf : map.leaves(min_, hi_key)) {
     int from[3], to[3];
     const int k0[3] = {leaf.min_key.x, leaf.min_key.y, leaf.min_key.z};
     bool empty = false;

@@ -192,19 +192,35 @@ std::vector<Eigen::Vector3f> OccupancyMap::occupied_centers() const {
   return centers;
 }
 
+namespace {
+
+/// The leaf under a leaf iterator (of either kind): its lowest finest cell, span and state.
+template <typename Iterator>
+Leaf leaf_at(const octomap::OcTree& tree, const Iterator& it) {
+  const std::uint32_t span = 1u << (tree.getTreeDepth() - it.getDepth());
+  const octomap::OcTreeKey k = it.getKey();
+  const std::uint32_t mask = ~(span - 1u);
+  return {{std::uint16_t(k[0] & mask), std::uint16_t(k[1] & mask), std::uint16_t(k[2] & mask)},
+          span,
+          tree.isNodeOccupied(*it) ? VoxelState::Occupied : VoxelState::Free};
+}
+
+}  // namespace
+
 std::vector<Leaf> OccupancyMap::leaves() const {
   const auto& tree = impl_->tree;
   std::vector<Leaf> out;
   out.reserve(tree.getNumLeafNodes());
-  const unsigned max_depth = tree.getTreeDepth();
-  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    const std::uint32_t span = 1u << (max_depth - it.getDepth());
-    const octomap::OcTreeKey k = it.getKey();
-    const std::uint32_t mask = ~(span - 1u);
-    out.push_back({{std::uint16_t(k[0] & mask), std::uint16_t(k[1] & mask), std::uint16_t(k[2] & mask)},
-                   span,
-                   tree.isNodeOccupied(*it) ? VoxelState::Occupied : VoxelState::Free});
-  }
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) out.push_back(leaf_at(tree, it));
+  return out;
+}
+
+std::vector<Leaf> OccupancyMap::leaves(const VoxelKey& lo, const VoxelKey& hi) const {
+  const auto& tree = impl_->tree;
+  std::vector<Leaf> out;
+  const octomap::OcTreeKey min(lo.x, lo.y, lo.z), max(hi.x, hi.y, hi.z);
+  for (auto it = tree.begin_leafs_bbx(min, max), end = tree.end_leafs_bbx(); it != end; ++it)
+    out.push_back(leaf_at(tree, it));
   return out;
 }
 

@@ -39,7 +39,8 @@ Eigen::AlignedBox3d reach_box_world(const Reach& reach) {
   return world;
 }
 
-/// The sensor's box without --view-bounds: the known cells' box and, when unknown cells
+/// The sensor's box without --view-bounds: the known cells' box within the sensor's range of
+/// the search space (all of it when S is the default, the known cells' box) and, when unknown cells
 /// outside the hull may hold viewpoints (Config::exterior), the arm's reach as well, as far
 /// as it lies within the sensor's range of the search space (an eye farther away sees no
 /// void; a far base would otherwise stretch the grid across the distance) and no lower than
@@ -47,16 +48,19 @@ Eigen::AlignedBox3d reach_box_world(const Reach& reach) {
 Eigen::AlignedBox3d default_view_bounds(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
                                         const std::optional<Reach>& reach, const Config& config) {
   if (config.view_bounds_m) return *config.view_bounds_m;
-  if (config.exterior == Exterior::Unknown || known.isEmpty() || !reach || !reach->capmap) return known;
+  // An eye farther than the sensor's range from the search space sees none of its voids: a
+  // small search space of a large map reads a grid around it, not around the whole map.
   const Eigen::Vector3d range = Eigen::Vector3d::Constant(config.sensor.depth_max_m);
   const Eigen::AlignedBox3d in_range(search_space.min() - range, search_space.max() + range);
+  const Eigen::AlignedBox3d known_in_range = known.isEmpty() || search_space.isEmpty() ? known : known.intersection(in_range);
+  if (config.exterior == Exterior::Unknown || known.isEmpty() || !reach || !reach->capmap) return known_in_range;
   const Eigen::AlignedBox3d reach_in_range = reach_box_world(*reach).intersection(in_range);
-  if (reach_in_range.isEmpty()) return known;
+  if (reach_in_range.isEmpty()) return known_in_range;
   // Sideways and upwards, not downwards: below the lowest cell any ray reached lies what the
   // scene stands on (the floor's underside), not air a sensor can stand in. On the suite the
   // exhaustive planner took views from under the floor, up through its unseen cells, which
   // measured nothing (README, "Exploration over a scene suite").
-  Eigen::AlignedBox3d bounds = known.merged(reach_in_range);
+  Eigen::AlignedBox3d bounds = known_in_range.merged(reach_in_range);
   bounds.min().z() = known.min().z();
   return bounds;
 }

@@ -202,11 +202,58 @@ std::vector<Eigen::Vector3d> column_extremes(const map::DenseGrid& grid, const s
   return points;
 }
 
+/// column_extremes of a grid over every known cell of `map`, from its occupied leaves: each
+/// leaf's lowest and highest cell per column (in `box_m` when given), sorted by (y, x, z), so
+/// that each column's first and last are its extremes and the columns come in grid order.
+std::vector<Eigen::Vector3d> column_extremes(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& box_m) {
+  std::vector<std::uint64_t> ends;  // y << 32 | x << 16 | z
+  for (const map::Leaf& leaf : map.leaves()) {
+    if (leaf.state != map::VoxelState::Occupied) continue;
+    const std::uint32_t n = leaf.size_cells;
+    for (std::uint32_t y = 0; y < n; ++y)
+      for (std::uint32_t x = 0; x < n; ++x) {
+        const std::uint64_t column = std::uint64_t(leaf.min_key.y + y) << 32 | std::uint64_t(leaf.min_key.x + x) << 16;
+        std::int64_t low = -1, high = -1;
+        for (std::uint32_t z = 0; z < n; ++z) {
+          const map::VoxelKey k{std::uint16_t(leaf.min_key.x + x), std::uint16_t(leaf.min_key.y + y),
+                                std::uint16_t(leaf.min_key.z + z)};
+          if (box_m && !box_m->contains(map.center_of(k))) continue;
+          if (low < 0) low = k.z;
+          high = k.z;
+        }
+        if (low < 0) continue;
+        ends.push_back(column | std::uint64_t(low));
+        if (high != low) ends.push_back(column | std::uint64_t(high));
+      }
+  }
+  std::sort(ends.begin(), ends.end());
+  std::vector<Eigen::Vector3d> points;
+  auto center = [&](std::uint64_t e) {
+    return map.center_of({std::uint16_t(e >> 16 & 0xFFFF), std::uint16_t(e >> 32), std::uint16_t(e & 0xFFFF)});
+  };
+  for (std::size_t i = 0; i < ends.size();) {
+    std::size_t j = i;
+    while (j + 1 < ends.size() && ends[j + 1] >> 16 == ends[i] >> 16) ++j;
+    points.push_back(center(ends[i]));
+    if (ends[j] != ends[i]) points.push_back(center(ends[j]));
+    i = j + 1;
+  }
+  return points;
+}
+
 }  // namespace
 
 std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
                                       const std::optional<Eigen::AlignedBox3d>& hull_box_m) {
   hull = convex_hull(column_extremes(grid, hull_box_m));
+  return void_cells_in(grid, hull);
+}
+
+Hull hull_of_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& hull_box_m) {
+  return convex_hull(column_extremes(map, hull_box_m));
+}
+
+std::vector<map::VoxelKey> void_cells_in(const map::DenseGrid& grid, const Hull& hull) {
   if (hull.empty()) return {};
   const core::LargeVector<std::uint8_t> inside = inside_hull(grid, hull);
   std::vector<map::VoxelKey> out;

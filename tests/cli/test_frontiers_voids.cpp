@@ -5,6 +5,7 @@
 
 #include "cli_support.hpp"
 #include "fvx/io/cloud_file.hpp"
+#include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::test {
 namespace {
@@ -115,6 +116,44 @@ TEST(CliFrontiersVoids, BoundsThatExcludeEverythingGiveAnEmptyResultAndAWarning)
   EXPECT_EQ(j["results"]["void_cells"], 0);
   EXPECT_EQ(j["results"]["frontier_cells"], 0);
   EXPECT_FALSE(j["warnings"].empty());
+}
+
+/// Eight occupied cells at the corners of a 6 km cube (0.1 m cells) and a few free cells at its
+/// centre: a hull of 2·10^14 cells, more than any machine holds, around a small known place.
+void make_huge_map(const TempDir& dir) {
+  map::OccupancyMap map(0.1);
+  for (const int x : {-30000, 30000})
+    for (const int y : {-30000, 30000})
+      for (const int z : {-30000, 30000})
+        map.set_state({std::uint16_t(32768 + x), std::uint16_t(32768 + y), std::uint16_t(32768 + z)},
+                      map::VoxelState::Occupied);
+  for (int x = -3; x <= 3; ++x) map.set_state({std::uint16_t(32768 + x), 32768, 32768}, map::VoxelState::Free);
+  map.save(dir / "huge.bt");
+}
+
+TEST(CliFrontiersVoids, AMapTooLargeForTheMachineIsRefusedBeforeItAllocatesAndBoundsMakeItFit) {
+  const TempDir dir;
+  make_huge_map(dir);
+  for (const char* command : {"voids huge.bt", "nbv huge.bt --no-capmap"}) {
+    const RunResult r = run_fvx(dir, command);
+    EXPECT_EQ(r.status, 1) << command << ": " << r.err;
+    EXPECT_EQ(line_count(r.err), 1u) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("memory is available"), std::string::npos) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("--bounds"), std::string::npos) << command << ": " << r.err;
+    EXPECT_EQ(r.out, "") << command;
+  }
+  // Frontiers alone hold only the known cells: the map's few.
+  const RunResult f = run_fvx(dir, "frontiers huge.bt");
+  ASSERT_EQ(f.status, 0) << f.err;
+  EXPECT_EQ(json::parse(f.out)["results"]["frontier_cells"], 7);
+  // A search space around the known cells reads a grid around it alone; the hull, from every
+  // occupied cell, holds all of it, so each of its unknown cells is a void.
+  const RunResult v = run_fvx(dir, "voids huge.bt --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(json::parse(v.out)["results"]["void_cells"], 10 * 10 * 10 - 7);
+  const RunResult n = run_fvx(dir, "nbv huge.bt --no-capmap --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5 --depth-max 2");
+  ASSERT_EQ(n.status, 0) << n.err;
+  EXPECT_GT(json::parse(n.out)["results"]["best_void_cells_seen"].get<int>(), 0);
 }
 
 }  // namespace

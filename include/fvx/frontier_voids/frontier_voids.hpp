@@ -54,8 +54,10 @@ Analysis analyse(const map::OccupancyMap& map, const frontiers::FrontierSet& fro
 /// from one dense grid over the map's known cells (frontiers::frontier_cells,
 /// voids::void_cells). Equal to analyse() with freshly rebuilt sets, and several times faster
 /// on a real map — the path of the one-shot commands (`fvx frontiers`, `voids`, `nbv`).
-/// `with_voids` false: frontiers only, as analyse() without a void set. A known box of more
-/// than 2^28 cells (a few cells far apart) goes through the sets instead.
+/// `with_voids` false: frontiers only, as analyse() without a void set. With `bounds_m` the
+/// grid covers only the known cells in and next to it (the hull still comes from every
+/// occupied cell, voids::hull_of_map), so a small search space of a large map stays cheap.
+/// A grid of more than 2^28 cells (a few cells far apart) goes through the sets instead.
 /// `hull_in_bounds`: the voids' hull from the occupied cells in bounds_m only
 /// (VoidSet::rebuild's hull_box_m), as `fvx explore` and `replay` keep it.
 Analysis analyse_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& bounds_m,

@@ -174,6 +174,9 @@ class OccupancyMap {
 
   /// Every known leaf, in the octree's order.
   std::vector<Leaf> leaves() const;
+  /// The known leaves that hold a cell of the key box [lo, hi] (a leaf may reach beyond it),
+  /// in the octree's order; the octree's branches outside the box are not visited.
+  std::vector<Leaf> leaves(const VoxelKey& lo, const VoxelKey& hi) const;
 
   struct Impl;  ///< private; defined in src/map/tree.hpp
 

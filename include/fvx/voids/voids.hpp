@@ -43,6 +43,14 @@ core::LargeVector<std::uint8_t> inside_hull(const map::DenseGrid& grid, const Hu
 std::vector<map::VoxelKey> void_cells(const map::DenseGrid& grid, Hull& hull,
                                       const std::optional<Eigen::AlignedBox3d>& hull_box_m = std::nullopt);
 
+/// The hull void_cells finds on a grid over every known cell of `map`, read from the map's
+/// occupied leaves instead (each column's lowest and highest occupied cell, in the same
+/// order): the hull for a grid that covers only the search space of a large map.
+Hull hull_of_map(const map::OccupancyMap& map, const std::optional<Eigen::AlignedBox3d>& hull_box_m = std::nullopt);
+
+/// The void cells of `grid` inside `hull`, in key order.
+std::vector<map::VoxelKey> void_cells_in(const map::DenseGrid& grid, const Hull& hull);
+
 class VoidSet {
  public:
   VoidSet();

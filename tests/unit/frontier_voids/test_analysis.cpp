@@ -69,6 +69,11 @@ void expect_same_as_sets(const map::OccupancyMap& map, const std::optional<Eigen
               analyse(map, frontier_set, &void_set, bounds, config, min_void_width_cells), what);
   expect_same(analyse_map(map, bounds, config, 1, false), analyse(map, frontier_set, nullptr, bounds, config),
               what + ", frontiers only");
+  if (!bounds) return;
+  voids::VoidSet in_bounds;  // the hull of the occupied cells in S only (--void-hull search-space)
+  in_bounds.rebuild(map, bounds);
+  expect_same(analyse_map(map, bounds, config, min_void_width_cells, true, true),
+              analyse(map, frontier_set, &in_bounds, bounds, config, min_void_width_cells), what + ", hull in bounds");
 }
 
 /// Random blocks of free and occupied cells (pruned leaves among them) over unknown space.
@@ -95,6 +100,11 @@ TEST(Analysis, FromScratchEqualsTheSetsOnRandomMaps) {
     expect_same_as_sets(map, std::nullopt, 1, what);
     expect_same_as_sets(map, Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1.5, -0.5), Eigen::Vector3d(1.2, 0.8, 0.9)), 2,
                         what + ", bounds and width 2");
+    // Search spaces smaller than the map read a grid over them alone, the hull from all of it.
+    expect_same_as_sets(map, Eigen::AlignedBox3d(Eigen::Vector3d(-3, 0.05, -3), Eigen::Vector3d(0.3, 5, 0.42)), 1,
+                        what + ", bounds across the map's edge");
+    expect_same_as_sets(map, Eigen::AlignedBox3d(Eigen::Vector3d(0.05, -0.35, 0.1), Eigen::Vector3d(0.15, 0.35, 0.2)), 1,
+                        what + ", bounds one cell thick");
   }
 }
 
@@ -120,6 +130,10 @@ TEST(AnalysisRealData, FromScratchEqualsTheSetsOnRealMaps) {
     FVX_REAL_DATA_OR_SKIP(path, name);
     const map::OccupancyMap map = map::OccupancyMap::load(path);
     expect_same_as_sets(map, std::nullopt, 1, name);
+    const map::Stats st = map.stats();  // a search space of a quarter of the map, off its centre
+    const Eigen::Vector3d lo = st.known_min_m + 0.2 * (st.known_max_m - st.known_min_m);
+    expect_same_as_sets(map, Eigen::AlignedBox3d(lo, lo + 0.5 * (st.known_max_m - st.known_min_m)), 1,
+                        std::string(name) + ", bounds");
   }
 }
 

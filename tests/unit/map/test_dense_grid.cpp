@@ -2,6 +2,7 @@
 // against OccupancyMap::cast_ray.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "fvx/map/dense_grid.hpp"
@@ -36,6 +37,43 @@ TEST(DenseGrid, StatesEqualTheOctreeCellByCell) {
     known += grid.state_at(i) != VoxelState::Unknown;
   }
   EXPECT_GT(known, 1000u);
+}
+
+TEST(DenseGrid, ASmallBoxReadsOnlyItsLeavesAndEqualsTheOctree) {
+  std::mt19937 rng(3);
+  OccupancyMap map = random_map(rng);
+  for (int z = 0; z < 8; ++z)  // an aligned free block: leaves of 8 cells that the boxes cut
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        map.set_state({std::uint16_t(32784 + x), std::uint16_t(32784 + y), std::uint16_t(32784 + z)}, VoxelState::Free);
+  const auto all = map.leaves();
+  ASSERT_TRUE(std::any_of(all.begin(), all.end(), [](const Leaf& l) { return l.size_cells >= 8; }));
+  for (const Eigen::AlignedBox3d& box :
+       {Eigen::AlignedBox3d(Eigen::Vector3d(1.72, 1.63, 1.61), Eigen::Vector3d(1.93, 2.1, 1.7)),
+        Eigen::AlignedBox3d(Eigen::Vector3d(-0.31, -0.2, -0.05), Eigen::Vector3d(0.12, 0.33, 0.41)),
+        Eigen::AlignedBox3d(Eigen::Vector3d(1.0, -2.0, -0.5), Eigen::Vector3d(9.0, 0.0, 0.5))}) {
+    const DenseGrid grid(map, box);
+    ASSERT_GT(grid.cell_count(), 0u);
+    for (std::size_t i = 0; i < grid.cell_count(); ++i) ASSERT_EQ(grid.state_at(i), map.state(grid.key(i)));
+    // The leaves in the box's keys are the leaves that reach into it, each once.
+    const VoxelKey lo = grid.min_key();
+    const VoxelKey hi{std::uint16_t(lo.x + grid.size().x() - 1), std::uint16_t(lo.y + grid.size().y() - 1),
+                      std::uint16_t(lo.z + grid.size().z() - 1)};
+    std::vector<Leaf> expected;
+    for (const Leaf& l : all) {
+      const int k0[3] = {l.min_key.x, l.min_key.y, l.min_key.z}, a[3] = {lo.x, lo.y, lo.z}, b[3] = {hi.x, hi.y, hi.z};
+      bool overlaps = true;
+      for (int d = 0; d < 3; ++d) overlaps &= k0[d] <= b[d] && k0[d] + int(l.size_cells) - 1 >= a[d];
+      if (overlaps) expected.push_back(l);
+    }
+    const std::vector<Leaf> in_box = map.leaves(lo, hi);
+    ASSERT_EQ(in_box.size(), expected.size());
+    for (std::size_t i = 0; i < in_box.size(); ++i) {
+      EXPECT_EQ(in_box[i].min_key, expected[i].min_key);
+      EXPECT_EQ(in_box[i].size_cells, expected[i].size_cells);
+      EXPECT_EQ(in_box[i].state, expected[i].state);
+    }
+  }
 }
 
 TEST(DenseGrid, CellOfEqualsTheMapsKeyInsideTheGridAndIsEmptyOutside) {

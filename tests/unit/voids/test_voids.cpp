@@ -2,6 +2,8 @@
 // degenerate clouds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 
 #include "fvx/voids/voids.hpp"
@@ -108,6 +110,48 @@ TEST(Voids, AHullBoxBuildsTheHullFromTheOccupiedCellsInItOnly) {
       Hull hull;
       const map::DenseGrid grid(map, Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-2), Eigen::Vector3d::Constant(2)));
       EXPECT_EQ(void_cells(grid, hull, box), oracle) << "seed " << seed << " scan " << s;
+    }
+  }
+}
+
+std::vector<std::array<double, 3>> sorted(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<std::array<double, 3>> out;
+  for (const Eigen::Vector3d& p : points) out.push_back({p.x(), p.y(), p.z()});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Voids, TheHullFromTheMapsLeavesIsTheGridsHull) {
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-0.45, -0.45, -0.45), Eigen::Vector3d(0.45, 0.45, 0.45));
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    map::OccupancyMap map(0.1);
+    for (int s = 0; s < 3; ++s) {
+      const Eigen::Vector3f origin(0.25f * s, 0.1f * float(seed), 0.05f * s);
+      map.integrate(random_scan(rng, origin, 200), origin, 0.9);
+    }
+    for (int z = 0; z < 4; ++z)  // an aligned solid block: occupied leaves of several cells
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+          map.set_state({std::uint16_t(32776 + x), std::uint16_t(32768 + y), std::uint16_t(32764 + z)},
+                        map::VoxelState::Occupied);
+    const auto leaves = map.leaves();
+    ASSERT_TRUE(std::any_of(leaves.begin(), leaves.end(), [](const map::Leaf& l) {
+      return l.state == map::VoxelState::Occupied && l.size_cells > 1;
+    }));
+    const map::Stats st = map.stats();
+    const map::DenseGrid grid(map, Eigen::AlignedBox3d(st.known_min_m, st.known_max_m));
+    for (const auto& hull_box : {std::optional<Eigen::AlignedBox3d>(), std::optional<Eigen::AlignedBox3d>(box)}) {
+      Hull from_grid;
+      const auto cells = void_cells(grid, from_grid, hull_box);
+      const Hull from_map = hull_of_map(map, hull_box);
+      // CGAL lists a hull's faces and vertices in an order that changes from call to call
+      // (the same points, hulled twice, give another order), so the hulls compare as sets.
+      ASSERT_FALSE(from_map.empty()) << "seed " << seed;
+      EXPECT_EQ(sorted(from_map.vertices), sorted(from_grid.vertices)) << "seed " << seed;
+      EXPECT_EQ(from_map.planes.size(), from_grid.planes.size()) << "seed " << seed;
+      EXPECT_TRUE(from_map.bounds_m.isApprox(from_grid.bounds_m, 0.0)) << "seed " << seed;
+      EXPECT_EQ(void_cells_in(grid, from_map), cells) << "seed " << seed;
     }
   }
 }
