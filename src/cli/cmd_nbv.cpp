@@ -109,6 +109,7 @@ int run_nbv(const Args& args) {
     progress.update("fvx nbv: " + stage + (total ? " " + std::to_string(done) + "/" + std::to_string(total) : ""));
   };
   progress.update("fvx nbv: frontiers, voids and frontier-voids of " + args.positional[0]);
+  cluster_config.progress = config.progress;
   const int void_width = voids::void_width_for_target(target_size_m, map.resolution_m());
   const frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, cluster_config, void_width, true, hull_in_bounds);
   const nbv::Result r = nbv::select(map, a, reach, config);

@@ -24,6 +24,7 @@ const CommandSpec kVoidsSpec = {
         {"by-cluster", 0, nullptr, "colour the cloud by cluster instead", "-"},
         {"ellipsoids", 0, "FILE.ply", "the void clusters' ellipsoids as a mesh", "-"},
         {"timing", 0, nullptr, "add the time of loading the map and of the analysis (seconds) to the report", "-"},
+        {"progress", 0, nullptr, "show progress on stderr even when it is not a terminal", "-"},
         {"help", 'h', nullptr, "show this help", "-"},
     }, report::picture_options(false, "a 3-D picture of the search space: occupied (grey), frontier (red) and void (violet) cells, the void ellipsoids", "a top view of occupied (grey), frontier (red) and void (violet) cells")})};
 
@@ -39,7 +40,13 @@ int run_voids(const Args& args) {
   Stopwatch clock;
   const map::OccupancyMap map = map::OccupancyMap::load(args.positional[0]);
   const double load_s = clock.lap();
+  Progress progress(args.has("progress"));
+  progress.update("fvx voids: frontiers, voids and frontier-voids of " + args.positional[0]);
+  config.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
+    progress.update("fvx voids: " + stage + " " + std::to_string(done) + "/" + std::to_string(total));
+  };
   frontier_voids::Analysis a = frontier_voids::analyse_map(map, bounds, config, 1, true, hull_in_bounds);
+  progress.finish();
   const double analysis_s = clock.lap();
   if (args.has("cloud")) write_cells_cloud(args.get("cloud"), map, a, true, args.has("by-cluster"));
   if (args.has("ellipsoids")) write_ellipsoids(args.get("ellipsoids"), a.void_clusters);

@@ -65,6 +65,24 @@ bool grows(Moments& m, const Eigen::Vector3d& p, double R, double min_fit_score)
   return true;
 }
 
+/// Counts the cells clustered and calls ClusterConfig::progress each progress_cells of them.
+class Report {
+ public:
+  Report(const ClusterConfig& config, std::size_t cells)
+      : config_(config), cells_(cells), next_(config.progress_cells) {}
+  void add(std::size_t clustered) {
+    done_ += clustered;
+    if (config_.progress && done_ >= next_) {
+      config_.progress("clustering void cells", done_, cells_);
+      next_ = done_ + config_.progress_cells;
+    }
+  }
+
+ private:
+  const ClusterConfig& config_;
+  std::size_t cells_, done_ = 0, next_;
+};
+
 /// 0 … n − 1 in the seeded order in which cells start clusters.
 std::vector<std::uint32_t> seeded_order(std::size_t n, std::uint64_t seed) {
   std::vector<std::uint32_t> order(n);
@@ -83,6 +101,7 @@ std::vector<int> grow_sparse(const map::OccupancyMap& map, const std::vector<map
   });
   std::vector<int> owner(cells.size(), -1);  // index → cluster, −1 while unassigned
   const std::vector<std::uint32_t> order = seeded_order(cells.size(), config.seed);
+  Report report(config, cells.size());
 
   int clusters = 0;
   std::vector<std::uint32_t> queue;  // first in, first out: read from `head` on
@@ -108,6 +127,7 @@ std::vector<int> grow_sparse(const map::OccupancyMap& map, const std::vector<map
             queue.push_back(j);
           }
     }
+    report.add(queue.size());
   }
   return owner;
 }
@@ -158,6 +178,7 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
   if (box.label.empty()) return grow_sparse(map, cells, config);
   const double R = map.resolution_m();
   const std::vector<std::uint32_t> order = seeded_order(cells.size(), config.seed);
+  Report report(config, cells.size());
 
   int clusters = 0;
   std::vector<std::pair<map::VoxelKey, std::size_t>> queue;  // (cell, its label); read from `head` on
@@ -187,6 +208,7 @@ std::vector<int> grow(const map::OccupancyMap& map, const std::vector<map::Voxel
             queue.emplace_back(n, n_at);
           }
     }
+    report.add(queue.size());
   }
   std::vector<int> owner(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) owner[i] = box.label[box.at(cells[i])];

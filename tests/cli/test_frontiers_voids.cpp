@@ -148,9 +148,10 @@ TEST(CliFrontiersVoids, AMapTooLargeForTheMachineIsRefusedBeforeItAllocatesAndBo
   EXPECT_EQ(json::parse(f.out)["results"]["frontier_cells"], 7);
   // A search space around the known cells reads a grid around it alone; the hull, from every
   // occupied cell, holds all of it, so each of its unknown cells is a void.
-  const RunResult v = run_fvx(dir, "voids huge.bt --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5");
+  const RunResult v = run_fvx(dir, "voids huge.bt --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5 --progress");
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_EQ(json::parse(v.out)["results"]["void_cells"], 10 * 10 * 10 - 7);
+  EXPECT_NE(v.err.find("fvx voids: frontiers, voids and frontier-voids of huge.bt"), std::string::npos) << v.err;
   const RunResult n = run_fvx(dir, "nbv huge.bt --no-capmap --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5 --depth-max 2");
   ASSERT_EQ(n.status, 0) << n.err;
   EXPECT_GT(json::parse(n.out)["results"]["best_void_cells_seen"].get<int>(), 0);

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,11 @@ struct ClusterConfig {
   double min_fit_score = 0.7;
   /// Seed of the order in which cells start clusters. Default 1.
   std::uint64_t seed = 1;
+  /// Called with ("clustering void cells", cells clustered, cells) each time progress_cells
+  /// more are clustered: on maps where that takes long (tens of millions of void cells: a
+  /// minute). Neither is part of a report.
+  std::function<void(const std::string& stage, std::size_t done, std::size_t total)> progress;
+  std::size_t progress_cells = std::size_t(1) << 22;
 
   std::vector<std::string> validate() const;
 };

@@ -76,6 +76,37 @@ TEST(VoidClusters, TheDensePathEqualsTheIndexedOne) {
   EXPECT_GT(compared, 100u) << "the blobs should split into many clusters";
 }
 
+// Progress on both paths: counts that only grow, never past the cells, each at least the
+// step beyond the one before; and the same clusters as without it.
+TEST(VoidClusters, ProgressCountsTheCellsClusteredAndChangesNothing) {
+  const map::OccupancyMap map(0.05);
+  std::vector<map::VoxelKey> cells;  // twelve boxes apart, 125 cells each: a cluster each
+  for (int b = 0; b < 12; ++b) {
+    const auto box = box_cells(10 * b, 0, 0, 5, 5, 5);
+    cells.insert(cells.end(), box.begin(), box.end());
+  }
+  std::sort(cells.begin(), cells.end());
+  for (const bool indexed : {false, true}) {
+    ClusterConfig quiet, counted;
+    std::vector<std::pair<std::size_t, std::size_t>> calls;
+    counted.progress = [&](const std::string&, std::size_t done, std::size_t total) { calls.emplace_back(done, total); };
+    counted.progress_cells = 200;
+    const auto a = indexed ? cluster_voids_indexed(map, cells, quiet) : cluster_voids(map, cells, quiet);
+    const auto b = indexed ? cluster_voids_indexed(map, cells, counted) : cluster_voids(map, cells, counted);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].cells, b[i].cells);
+    ASSERT_GE(calls.size(), 5u) << "indexed " << indexed;
+    EXPECT_GE(calls.front().first, 200u);
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+      EXPECT_EQ(calls[i].second, cells.size());
+      EXPECT_LE(calls[i].first, cells.size());
+      if (i > 0) {
+        EXPECT_GE(calls[i].first, calls[i - 1].first + 200);
+      }
+    }
+  }
+}
+
 TEST(VoidClusters, TwoBoxesJoinedByALineSplitAndEveryCellIsInOneCluster) {
   const map::OccupancyMap map(0.05);
   auto cells = box_cells(0, 0, 0, 6, 6, 6);
