@@ -1,7 +1,6 @@
 #include "fvx/frontier_voids/frontier_voids.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <future>
 
@@ -102,18 +101,8 @@ Eigen::AlignedBox3d occupied_box_m(const map::OccupancyMap& map) {
 /// Stops before the analysis allocates when `box_m` (what it reads) would need more memory
 /// than the machine has available: a map of a building at a fine resolution, searched whole.
 void check_memory(const Eigen::AlignedBox3d& box_m, double R, double bytes_per_cell) {
-  if (box_m.isEmpty()) return;
-  const Eigen::Vector3d size_m = box_m.sizes();
-  const double cells = (size_m / R).prod(), need = cells * bytes_per_cell;
-  const std::optional<std::size_t> available = core::available_memory_bytes();
-  if (!available || need <= double(*available)) return;
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "the search space holds %.0f M cells (%.1f x %.1f x %.1f m at %g m): about %.1f GiB to analyse "
-                "and search, and %.1f GiB of memory is available; give --bounds x0,y0,z0,x1,y1,z1 to search part "
-                "of the map", cells / 1e6, size_m.x(), size_m.y(), size_m.z(), R, need / double(1ull << 30),
-                double(*available) / double(1ull << 30));
-  throw Error(text);
+  core::require_memory_for_box(box_m, R, bytes_per_cell, "the search space",
+                               "give --bounds x0,y0,z0,x1,y1,z1 to search part of the map");
 }
 
 /// Clusters and pairs the frontier and void cells already in `a`.

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "fvx/core/error.hpp"
+#include "fvx/core/memory.hpp"
 #include "fvx/core/threads.hpp"
 
 namespace fvx::nbv::detail {
@@ -22,12 +23,22 @@ Eigen::AlignedBox3d known_box(const map::OccupancyMap& map) {
 /// Rays run between the view bounds and the search space: the box around both, within the
 /// known cells (beyond them every cell is unknown and no viewpoint can be).
 /// With Config::exterior view or free the unknown cells around them may hold viewpoints: the
-/// box is then not cut to the known cells.
+/// box then reaches the sensor's range beyond the known cells (an eye farther away sees only
+/// unknown cells outside every void's hull, and no utility ray is longer). Before the grid is
+/// allocated, a box that would need more memory than is available is refused (about 24 B per
+/// cell: states, void labels, distances, the field and the threads' scratch).
 Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
-                             const Eigen::AlignedBox3d& view_bounds, Exterior exterior) {
+                             const Eigen::AlignedBox3d& view_bounds, const Config& config, double R) {
   if (known.isEmpty()) return known;
   const Eigen::AlignedBox3d around = search_space.merged(view_bounds);
-  return exterior != Exterior::Unknown ? around : around.intersection(known);
+  const Eigen::Vector3d range = Eigen::Vector3d::Constant(config.sensor.depth_max_m);
+  const Eigen::AlignedBox3d reach = config.exterior == Exterior::Unknown
+                                        ? known
+                                        : Eigen::AlignedBox3d(known.min() - range, known.max() + range);
+  const Eigen::AlignedBox3d box = around.intersection(reach);
+  core::require_memory_for_box(box, R, 24.0, "the search's grid",
+                               "give a smaller --bounds or --view-bounds, metres x0,y0,z0,x1,y1,z1");
+  return box;
 }
 
 /// The world box around the arm's reachable voxels (empty when none is reachable).
@@ -111,7 +122,7 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
       known_m(known_box(map_in)),
       view_bounds_m(default_view_bounds(known_m, analysis.bounds_m, reach_in, config_in)),
       candidate_box_m(candidate_box(view_bounds_m, reach_in)),
-      grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m, config_in.exterior)) {
+      grid(map_in, grid_box(known_m, analysis.bounds_m, view_bounds_m, config_in, map_in.resolution_m())) {
   if (config.exterior != Exterior::Unknown) mark_exterior();
   // Only voids a frontier touches count: an enclosed void (inside a closed box or a solid)
   // has no free cell beside it, so no view can see into it (paper §IV-B pairs voids with

@@ -178,6 +178,26 @@ TEST(CliNbv, BadInputGetsOneClearLineAndNoOutput) {
 
 // Under the budget the sampled accumulation is the exact one: the same report but for the
 // echoed mode; forced to sample, the report says how many vectors it traced of how many.
+// A user who gives a box "large enough for everything" gets the views of the map, not an
+// abort: the search's grid reaches the sensor's range beyond the known cells and no farther
+// (an eye beyond it sees nothing), where it once spanned the 2 km box (7·10¹⁰ cells).
+TEST(CliNbv, BoundsFarBeyondTheMapGiveItsViews) {
+  const TempDir dir;
+  make_crates_map(dir);
+  const RunResult plain = run_fvx(dir, "nbv map.ot --no-capmap");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const int best = json::parse(plain.out)["results"]["best_void_cells_seen"].get<int>();
+  ASSERT_GT(best, 0);
+  for (const char* boxes : {"--bounds -1000,-1000,-1000,1000,1000,1000", "--view-bounds -1000,-1000,-1000,1000,1000,1000",
+                            "--bounds -1000,-1000,-1000,1000,1000,1000 --exterior unknown"}) {
+    const RunResult r = run_fvx(dir, std::string("nbv map.ot --no-capmap ") + boxes);
+    ASSERT_EQ(r.status, 0) << boxes << ": " << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_FALSE(j["results"]["views"].empty()) << boxes;
+    EXPECT_GT(j["results"]["best_void_cells_seen"].get<int>(), best / 2) << boxes;
+  }
+}
+
 TEST(CliNbv, AccumulationModesAgreeUnderTheBudget) {
   const TempDir dir;
   make_closed_box_map(dir);
