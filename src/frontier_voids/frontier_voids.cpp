@@ -4,7 +4,6 @@
 #include <cstdlib>
 #include <future>
 
-#include "fvx/core/error.hpp"
 #include "fvx/core/memory.hpp"
 #include "fvx/map/key_index.hpp"
 

@@ -196,6 +196,13 @@ TEST(CliNbv, BoundsFarBeyondTheMapGiveItsViews) {
     EXPECT_FALSE(j["results"]["views"].empty()) << boxes;
     EXPECT_GT(j["results"]["best_void_cells_seen"].get<int>(), best / 2) << boxes;
   }
+  // View bounds far from the map: nowhere to stand that sees anything, an empty answer with
+  // its reason (this aborted as well).
+  const RunResult far = run_fvx(dir, "nbv map.ot --no-capmap --view-bounds 100,100,100,101,101,101");
+  ASSERT_EQ(far.status, 0) << far.err;
+  const json j = json::parse(far.out);
+  EXPECT_TRUE(j["results"]["views"].empty());
+  EXPECT_FALSE(j["results"]["reason"].get<std::string>().empty());
 }
 
 TEST(CliNbv, AccumulationModesAgreeUnderTheBudget) {
