@@ -10,7 +10,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${FVX_BUILD_DIR:-build}"
 halves="${1:-15 30 100}"
-[ -x "$build/src/fvx" ] && [ -x "$build/tests/bench/make_large_map" ] || { scripts/install-deps.sh && scripts/build.sh >/dev/null; }
+for half in $halves; do
+  [[ "$half" =~ ^[1-9][0-9]*$ ]] || { echo "bench-large-map: HALVES are whole metres, e.g. \"15 30 100\"; got '$half'" >&2; exit 2; }
+done
+if [ ! -x "$build/src/fvx" ] || [ ! -x "$build/tests/bench/make_large_map" ]; then
+  scripts/install-deps.sh && scripts/build.sh >/dev/null
+fi
 command -v /usr/bin/time >/dev/null || { echo "bench-large-map: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
