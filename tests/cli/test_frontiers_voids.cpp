@@ -155,6 +155,14 @@ TEST(CliFrontiersVoids, AMapTooLargeForTheMachineIsRefusedBeforeItAllocatesAndBo
   const RunResult n = run_fvx(dir, "nbv huge.bt --no-capmap --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5 --depth-max 2");
   ASSERT_EQ(n.status, 0) << n.err;
   EXPECT_GT(json::parse(n.out)["results"]["best_void_cells_seen"].get<int>(), 0);
+  // The sensor allowed anywhere in the 6 km: the search's grid is refused before it is allocated.
+  const RunResult g = run_fvx(dir, "nbv huge.bt --no-capmap --bounds -0.5,-0.5,-0.5,0.5,0.5,0.5 "
+                                   "--view-bounds -3000,-3000,-3000,3000,3000,3000");
+  EXPECT_EQ(g.status, 1) << g.err;
+  EXPECT_EQ(line_count(g.err), 1u) << g.err;
+  EXPECT_NE(g.err.find("the search's grid holds"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("--view-bounds"), std::string::npos) << g.err;
+  EXPECT_EQ(g.out, "");
 }
 
 }  // namespace
