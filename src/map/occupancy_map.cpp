@@ -219,8 +219,19 @@ std::vector<Leaf> OccupancyMap::leaves(const VoxelKey& lo, const VoxelKey& hi) c
   const auto& tree = impl_->tree;
   std::vector<Leaf> out;
   const octomap::OcTreeKey min(lo.x, lo.y, lo.z), max(hi.x, hi.y, hi.z);
-  for (auto it = tree.begin_leafs_bbx(min, max), end = tree.end_leafs_bbx(); it != end; ++it)
-    out.push_back(leaf_at(tree, it));
+  // OctoMap's bbx iterator tests a node's overlap with its upper bound one cell too far
+  // (centre + half span, OcTreeIterator.hxx), so it also yields a leaf that ends just below
+  // lo; keep only the leaves that hold a cell of the box.
+  const auto reaches = [&](const Leaf& l) {
+    const std::uint32_t a[3] = {l.min_key.x, l.min_key.y, l.min_key.z}, b[3] = {lo.x, lo.y, lo.z};
+    for (int d = 0; d < 3; ++d)
+      if (a[d] + l.size_cells <= b[d]) return false;
+    return true;
+  };
+  for (auto it = tree.begin_leafs_bbx(min, max), end = tree.end_leafs_bbx(); it != end; ++it) {
+    const Leaf leaf = leaf_at(tree, it);
+    if (reaches(leaf)) out.push_back(leaf);
+  }
   return out;
 }
 

@@ -51,7 +51,9 @@ TEST(DenseGrid, ASmallBoxReadsOnlyItsLeavesAndEqualsTheOctree) {
   for (const Eigen::AlignedBox3d& box :
        {Eigen::AlignedBox3d(Eigen::Vector3d(1.72, 1.63, 1.61), Eigen::Vector3d(1.93, 2.1, 1.7)),
         Eigen::AlignedBox3d(Eigen::Vector3d(-0.31, -0.2, -0.05), Eigen::Vector3d(0.12, 0.33, 0.41)),
-        Eigen::AlignedBox3d(Eigen::Vector3d(1.0, -2.0, -0.5), Eigen::Vector3d(9.0, 0.0, 0.5))}) {
+        Eigen::AlignedBox3d(Eigen::Vector3d(1.0, -2.0, -0.5), Eigen::Vector3d(9.0, 0.0, 0.5)),
+        // starts on the cell just above the block's leaf, which OctoMap's bbx iterator also yields
+        Eigen::AlignedBox3d(Eigen::Vector3d(2.41, 1.61, 1.61), Eigen::Vector3d(2.6, 2.3, 2.3))}) {
     const DenseGrid grid(map, box);
     ASSERT_GT(grid.cell_count(), 0u);
     for (std::size_t i = 0; i < grid.cell_count(); ++i) ASSERT_EQ(grid.state_at(i), map.state(grid.key(i)));
