@@ -20,8 +20,9 @@ Eigen::AlignedBox3d known_box(const map::OccupancyMap& map) {
   return stats.empty ? Eigen::AlignedBox3d() : Eigen::AlignedBox3d(stats.known_min_m, stats.known_max_m);
 }
 
-/// Rays run between the view bounds and the search space: the box around both, within the
-/// known cells (beyond them every cell is unknown and no viewpoint can be).
+/// Rays run between the view bounds and the search space's known part (its void and frontier
+/// cells are known or within the voids' hull, which the known cells bound): the box around
+/// both, within the known cells (beyond them every cell is unknown and no viewpoint can be).
 /// With Config::exterior view or free the unknown cells around them may hold viewpoints: the
 /// box then reaches the sensor's range beyond the known cells (an eye farther away sees only
 /// unknown cells outside every void's hull, and no utility ray is longer). Before the grid is
@@ -30,7 +31,7 @@ Eigen::AlignedBox3d known_box(const map::OccupancyMap& map) {
 Eigen::AlignedBox3d grid_box(const Eigen::AlignedBox3d& known, const Eigen::AlignedBox3d& search_space,
                              const Eigen::AlignedBox3d& view_bounds, const Config& config, double R) {
   if (known.isEmpty()) return known;
-  const Eigen::AlignedBox3d around = search_space.merged(view_bounds);
+  const Eigen::AlignedBox3d around = search_space.intersection(known).merged(view_bounds);
   const Eigen::Vector3d range = Eigen::Vector3d::Constant(config.sensor.depth_max_m);
   const Eigen::AlignedBox3d reach = config.exterior == Exterior::Unknown
                                         ? known
