@@ -316,12 +316,12 @@ TEST(Nbv, OnThePaperReplicasTheSampledBestViewSeesWhatTheExactOneSees) {
   EXPECT_TRUE(sampled) << "no replica sampled: the test compares nothing";
 }
 
-// The same on the real slambook map (5 cm, 374-451 M exact vectors: 35-40 s each), free-flying.
+// The same on the real slambook map (5 cm, 374-451 M exact vectors: 35-40 s each), free-flying,
+// one seed (seeds 1-3 gave 0.960, 0.992, 0.990; scripts/bench-nbv-scale.sh measures more).
 TEST(NbvRealData, OnTheSlambookMapTheSampledBestViewSeesWhatTheExactOneSees) {
   FVX_REAL_DATA_OR_SKIP(path, "octomap-maps/slambook_ch13/octomap.bt");
   const map::OccupancyMap map = map::OccupancyMap::load(path);
-  for (const std::uint64_t seed : {1u, 2u})
-    EXPECT_TRUE(expect_sampled_sees_what_exact_sees(map, std::nullopt, seed, 0.95, "slambook")) << "must sample";
+  EXPECT_TRUE(expect_sampled_sees_what_exact_sees(map, std::nullopt, 1, 0.95, "slambook")) << "must sample";
 }
 
 /// U of a pose with the default full fan, from the map and the analysis alone: the void
