@@ -30,15 +30,16 @@ if [ "${1:-}" = "--proof" ]; then
   (cd "$build" && ctest --output-on-failure -L proof)
   exit $?
 fi
-# The tests that take more than 10 s in the release build: end-to-end loops and planner
-# sweeps whose readers and steps the other tests already cover. Under ASan they would take
-# the job past CI's 30 minutes; they run in scripts/test.sh.
+# The tests that take more than 10 s in the release build or under ASan (tests/sanitize-skip.txt):
+# end-to-end loops and planner sweeps whose readers and steps the other tests already cover.
+# Under ASan they would take the job past CI's 30 minutes; they run in scripts/test.sh.
+skip=$(grep -v -e '^#' -e '^$' tests/sanitize-skip.txt)
 # A name that matches no test (one renamed since) would quietly put its test back in the job.
-missing=$(grep -v -e '^#' -e '^$' tests/sanitize-skip.txt | grep -vxFf <(cd "$build" && ctest -N | awk '/Test +#/ {print $3}') || true)
+missing=$(grep -vxFf <(cd "$build" && ctest -N | awk '/Test +#/ {print $3}') <<< "$skip" || true)
 if [ -n "$missing" ]; then
   echo "sanitize.sh: tests/sanitize-skip.txt names no test called: ${missing//$'\n'/ }" >&2
   exit 1
 fi
-slow="^($(grep -v '^#' tests/sanitize-skip.txt | paste -sd'|'))\$"
+slow="^($(paste -sd'|' <<< "$skip"))\$"
 (cd "$build" && ctest --output-on-failure -j "$(nproc)" -LE proof -E "$slow")
 scripts/fuzz.sh "${FVX_FUZZ_SECONDS:-30}"
