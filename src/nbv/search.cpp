@@ -139,12 +139,13 @@ Search::Search(const map::OccupancyMap& map_in, const frontier_voids::Analysis& 
   for (const map::VoxelKey& k : hidden_void_cells)
     if (grid.contains(k)) void_label[grid.index(k)] = -1;
   any_hidden = !hidden_void_cells.empty();
-  // Only "an occupied cell within clearance_m?" is asked of it (keep_position): distances
-  // beyond it, with a cell to spare for rounding, are dropped by the transform (cheaper).
+  // Only "an occupied cell within clearance_m of the eye?" is asked of it (clear_of_occupied).
+  // The eye may sit anywhere in its cell, up to sqrt(3)/2 cells from the centre: distances
+  // beyond the clearance plus one cell are dropped by the transform (cheaper).
   const double R = grid.resolution_m();
-  const double clearance_cells_sq = config.clearance_m * config.clearance_m / (R * R);
+  const double reach_cells = config.clearance_m / R + 1.0;
   occupied_distance_sq = map::squared_distance_to(grid, map::VoxelState::Occupied, config.threads,
-                                                  float(std::floor(clearance_cells_sq) + 1.0));
+                                                  float(std::ceil(reach_cells * reach_cells)));
   rays_sensor = viewpoints::ray_fan(config.sensor.intrinsics, config.ray_cols, config.ray_rows);
   const bool screens = config.strategy == Strategy::FrontierVoid || config.strategy == Strategy::Exhaustive;
   const auto fan = [&](int cols, int rows) {
@@ -232,6 +233,31 @@ Eigen::Matrix3d Search::snap_to_reach(const Eigen::Vector3d& p_world, const Eige
   return Eigen::Quaterniond::FromTwoVectors(axis, *nearest) * R;
 }
 
+bool Search::clear_of_occupied(const map::VoxelKey& cell, const Eigen::Vector3d& p_world) const {
+  // Occupied cell centres within clearance_m (the grid covers the known cells in reach). The
+  // transform gives the distance from the cell's centre: a centre within the clearance fails
+  // the cell; an eye off the centre (an IK snap, a capability-map voxel) by `off` is clear
+  // when the centre is farther than clearance + off, and else is measured against the
+  // occupied cells around it.
+  const double R = grid.resolution_m(), clearance = config.clearance_m;
+  const double centre_m = std::sqrt(double(occupied_distance_sq[grid.index(cell)])) * R;
+  if (centre_m <= clearance) return false;
+  const double off_m = (p_world - grid.center_of(cell)).norm();
+  if (centre_m - off_m > clearance) return true;
+  const int r = int(std::ceil((clearance + off_m) / R));
+  const Eigen::Vector3i size = grid.size();
+  const int c[3] = {cell.x - grid.min_key().x, cell.y - grid.min_key().y, cell.z - grid.min_key().z};
+  for (int z = std::max(0, c[2] - r); z <= std::min(size.z() - 1, c[2] + r); ++z)
+    for (int y = std::max(0, c[1] - r); y <= std::min(size.y() - 1, c[1] + r); ++y)
+      for (int x = std::max(0, c[0] - r); x <= std::min(size.x() - 1, c[0] + r); ++x) {
+        const map::VoxelKey k{std::uint16_t(grid.min_key().x + x), std::uint16_t(grid.min_key().y + y),
+                              std::uint16_t(grid.min_key().z + z)};
+        if (grid.state(k) == map::VoxelState::Occupied && (grid.center_of(k) - p_world).norm() <= clearance)
+          return false;
+      }
+  return true;
+}
+
 bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const {
   if (!grid.contains(cell) || !may_stand_in(grid.index(cell))) {
     ++pruning.not_free;
@@ -241,9 +267,7 @@ bool Search::keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_w
     ++pruning.outside_view_bounds;
     return false;
   }
-  // Occupied cell centres within clearance_m (the grid covers the known cells in reach).
-  const double R = grid.resolution_m();
-  if (double(occupied_distance_sq[grid.index(cell)]) * R * R <= config.clearance_m * config.clearance_m) {
+  if (!clear_of_occupied(cell, p_world)) {
     ++pruning.too_close_to_obstacle;
     return false;
   }

@@ -50,6 +50,8 @@ struct Search {
   Search(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
          const Config& config, const std::vector<map::VoxelKey>& hidden_void_cells);
 
+  /// No occupied cell centre within Config::clearance_m of the eye at p_world, in `cell`.
+  bool clear_of_occupied(const map::VoxelKey& cell, const Eigen::Vector3d& p_world) const;
   /// Position checks in the paper's order, each counted in `pruning` when it fails.
   bool keep_position(const map::VoxelKey& cell, const Eigen::Vector3d& p_world, Pruning& pruning) const;
   /// The cells with a value > 0 that pass keep_position, by value (descending; ties: index
@@ -140,7 +142,7 @@ struct Search {
   Eigen::AlignedBox3d candidate_box_m;
   map::DenseGrid grid;
   core::LargeVector<std::int32_t> void_label;         ///< per grid cell: void cluster id, −1 elsewhere
-  /// Per grid cell: to the nearest occupied cell, cells²; +infinity beyond the clearance.
+  /// Per grid cell: to the nearest occupied cell, cells²; +infinity beyond the clearance + 1 cell.
   core::LargeVector<float> occupied_distance_sq;
   /// Per cell, 1 where a viewpoint may stand in an unknown cell outside the voids' hull
   /// (Config::exterior); empty with Exterior::Unknown.

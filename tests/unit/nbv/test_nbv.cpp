@@ -686,6 +686,43 @@ TEST(Nbv, UnderViewTheSensorsBoxDoesNotGoBelowTheLowestKnownCell) {
   EXPECT_TRUE(paper.view_bounds_m.isApprox(known));
 }
 
+// An eye off its cell's centre (an IK snap, a capability-map voxel) is clear only if no
+// occupied cell centre lies within the clearance of the eye itself, nor of the cell's centre
+// (the cell test). Brute force over the grid's occupied cells, at eyes scattered around them.
+TEST(Nbv, AnEyeOffItsCellsCentreKeepsTheClearance) {
+  const ClosedBox& box = closed_box();
+  Config c = coarse();
+  c.clearance_m = 0.095;  // 4.75 cells: no cell centre is at exactly the clearance
+  const detail::Search s(box.map, box.analysis, std::nullopt, c, {});
+  std::vector<Eigen::Vector3d> occupied;
+  for (std::size_t i = 0; i < s.grid.cell_count(); ++i)
+    if (s.grid.state_at(i) == map::VoxelState::Occupied) occupied.push_back(s.grid.center_of(s.grid.key(i)));
+  ASSERT_GT(occupied.size(), 100u);
+  const auto clear = [&](const Eigen::Vector3d& p) {
+    for (const auto& o : occupied)
+      if ((o - p).norm() <= c.clearance_m) return false;
+    return true;
+  };
+  std::mt19937_64 rng(7);
+  // Eyes about the clearance away from an occupied cell, where the cell test and the eye's
+  // own distance can disagree.
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> distance_m(c.clearance_m - 0.01, c.clearance_m + 0.02);
+  std::size_t eyes = 0, only_the_eye_too_close = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::Vector3d direction = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const Eigen::Vector3d p = occupied[rng() % occupied.size()] + distance_m(rng) * direction;
+    const std::optional<map::VoxelKey> cell = s.grid.cell_of(p);
+    if (!cell) continue;
+    ++eyes;
+    const bool centre_clear = clear(s.grid.center_of(*cell)), eye_clear = clear(p);
+    if (centre_clear && !eye_clear) ++only_the_eye_too_close;
+    EXPECT_EQ(s.clear_of_occupied(*cell, p), centre_clear && eye_clear) << p.transpose();
+  }
+  EXPECT_GT(eyes, 2000u);
+  EXPECT_GT(only_the_eye_too_close, 20u) << "the eyes must test the band the cell's centre misses";
+}
+
 // The exhaustive strategy scores every pose in known free cells under View as well, and with
 // the same U (the scorer neither counts nor stops at unknown cells outside the voids): the
 // best view can only gain. Free adds no pose to View's and changes no U. Unscreened, so that
