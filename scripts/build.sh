@@ -10,6 +10,9 @@ free_mb=$(df -Pm "$(dirname "$(realpath -m "$build")")" "${TMPDIR:-/tmp}" 2>/dev
 if [ -n "$free_mb" ] && [ "$free_mb" -lt 2048 ]; then
   echo "build.sh: warning: only ${free_mb} MB free for $build or ${TMPDIR:-/tmp}; a full build needs about 1 GB" >&2
 fi
+# A new build folder uses Ninja where it is installed (scripts/generator.sh).
+. scripts/generator.sh
+fvx_choose_generator "$build"
 # PCL's config prints two "** WARNING ** io features ..." lines about optional codecs; hide only those.
 cmake -S . -B "$build" -DFVX_WERROR="${FVX_WERROR:-OFF}" "$@" > /dev/null 2> >(grep -v "^\*\* WARNING \*\* io features" >&2)
 cmake --build "$build" -j "$(nproc)"

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config jq time gnuplot-nox
+  build-essential cmake ninja-build pkg-config jq time gnuplot-nox
   libpcl-dev liboctomap-dev libeigen3-dev libopencv-dev nlohmann-json3-dev
   libcgal-dev libembree-dev liburdfdom-dev libtinyxml-dev liborocos-kdl-dev libnanoflann-dev
   librosbag-storage-dev libsensor-msgs-dev libtf2-msgs-dev libtf2-dev  # ROS 1 bags, without ROS
