@@ -2,6 +2,7 @@
 // determinism; frontier-void pairing and utility.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <random>
 #include <set>
@@ -74,6 +75,51 @@ TEST(VoidClusters, TheDensePathEqualsTheIndexedOne) {
       }
   }
   EXPECT_GT(compared, 100u) << "the blobs should split into many clusters";
+}
+
+// Eq. 2 as the paper writes it, with full 3×3 matrices and Eigen's determinant, as the oracle
+// of the clusters' fit scores and variances (region growing keeps the sums' upper triangle
+// only): equal to the bit, on random blobs over several thresholds and seeds.
+TEST(VoidClusters, FitScoresEqualTheFullMatrixFormulaToTheBit) {
+  const map::OccupancyMap map(0.05);
+  const double R = map.resolution_m();
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> u(0, 29);
+  std::set<map::VoxelKey> unique;
+  for (int blob = 0; blob < 8; ++blob) {
+    const int cx = u(rng), cy = u(rng), cz = u(rng), r = 2 + u(rng) % 6;
+    for (int z = -r; z <= r; ++z)
+      for (int y = -r; y <= r; ++y)
+        for (int x = -r; x <= r; ++x)
+          if (2 * x * x + y * y + 3 * z * z <= 2 * r * r)
+            unique.insert({std::uint16_t(32700 + cx + x), std::uint16_t(32700 + cy + y), std::uint16_t(32700 + cz + z)});
+  }
+  const std::vector<map::VoxelKey> cells(unique.begin(), unique.end());
+  std::size_t compared = 0;
+  for (const double threshold : {0.5, 0.7, 0.9})
+    for (std::uint64_t seed : {1u, 2u}) {
+      ClusterConfig config;
+      config.seed = seed;
+      config.min_fit_score = threshold;
+      for (const VoidCluster& c : cluster_voids(map, cells, config)) {
+        const Eigen::Vector3d origin = map.center_of(c.cells.front());
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+        for (const auto& k : c.cells) {
+          const Eigen::Vector3d q = map.center_of(k) - origin;
+          sum += q;
+          outer += q * q.transpose();
+        }
+        const double n = double(c.cells.size());
+        const Eigen::Vector3d mean = sum / n;
+        const Eigen::Matrix3d covariance = outer / n - mean * mean.transpose() + R * R / 12.0 * Eigen::Matrix3d::Identity();
+        const double abc = std::sqrt(125.0 * std::max(covariance.determinant(), 0.0));
+        ASSERT_EQ(c.fit_score, n * R * R * R / (4.0 / 3.0 * M_PI * abc)) << "cluster of " << c.cells.size();
+        ASSERT_EQ(c.variances_m2, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues());
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 30u);
 }
 
 // Progress on both paths: counts that only grow, never past the cells, each at least the
