@@ -13,11 +13,7 @@ namespace {
 
 constexpr int kTreeDepth = 16;  // OctoMap's key depth: nodes at depth 16 are leaves
 
-struct Header {
-  std::string id;
-  long long size = 0;  ///< nodes (.ot: held to it); 0, also without a size line, reads no data, as OctoMap
-  std::size_t data_at = 0;
-};
+using Header = OctreeHeader;
 
 /// The header up to "data", read token by token as OctoMap's AbstractOcTree::readHeader reads
 /// it, so that the walk starts where OctoMap will: a line-based reading took "res 0.4data" for
@@ -48,6 +44,7 @@ Header read_header(const std::string& path, const std::string& bytes) {
       double value = 0.0;
       in >> value;
       res = value > 0.0;
+      h.resolution_m = value;
     } else if (token == "size") {
       unsigned value = 0;
       in >> value;
@@ -123,12 +120,12 @@ std::size_t walk_binary(const std::string& path, const std::string& bytes, std::
 
 }  // namespace
 
-void check_octree_stream(const std::string& path, bool binary) {
+OctreeHeader check_octree_stream(const std::string& path, bool binary) {
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
   const Header h = read_header(path, bytes);
   const std::size_t value_bytes = binary ? 0 : node_bytes(path, h.id);
-  if (h.size == 0) return;  // OctoMap reads no data for an empty tree
+  if (h.size == 0) return h;  // OctoMap reads no data for an empty tree
   long long nodes = 0;
   std::size_t end = 0;
   if (binary) {
@@ -142,6 +139,7 @@ void check_octree_stream(const std::string& path, bool binary) {
   if (end != bytes.size())
     throw FileError(path, "corrupt OctoMap data: " + std::to_string(bytes.size() - end) +
                               " bytes after the last node of the tree");
+  return h;
 }
 
 }  // namespace fvx::map
