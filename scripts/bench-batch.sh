@@ -8,7 +8,8 @@
 # Per plan: the batch's wall time (plan, `parallel -j CORES` of one-thread tasks, merge), its
 # ratio to one process, whether the merged map is the one-process map byte for byte, the
 # shards' run times from the job log and, for 64 shards, the time 64 slots would take (the
-# longest shard plus the merge, as measured here). Then fk-seeded-ik, whose slab shards split
+# longest shard plus the merge, as measured here), and the floor that no split goes under (GNU
+# parallel running N empty tasks on the same slots, plus the merge). Then fk-seeded-ik, whose slab shards split
 # the IK work, at FVX_BATCH_IK_VOXEL (default 0.05; 0 skips it).
 #   scripts/bench-batch.sh [URDF BASE TIP]   default: FVX_REAL_DATA's youBot arm
 # FVX_BATCH_VOXEL (default 0.025), FVX_BATCH_SHARDS (default "2 8 64"), FVX_BATCH_SLAB_SHARDS
@@ -42,17 +43,23 @@ plan() {
   local same=no
   cmp -s "$tmp/one.fcm" "$dir/map.fcm" && same=yes
   awk -F'\t' 'NR > 1 { print $4 }' "$dir/joblog" | sort -g > "$tmp/runtimes"
-  local samples
+  local samples empty_start empty_end
   samples=$(cat "$dir"/parts/*.json | jq -s 'map(.results.fk_samples) | add')
+  # The floor no split can go under: GNU parallel running N empty tasks on the same slots,
+  # plus this plan's merge. Over a tenth of one process, N shards cannot be within 10 %.
+  empty_start=$(date +%s.%N)
+  seq "$n" | parallel -j "$slots" true
+  empty_end=$(date +%s.%N)
   awk -v label="$label" -v n="$n" -v one="$one_s" -v s="$start" -v m="$merge_start" -v e="$end" -v same="$same" \
-      -v samples="$samples" '{ t[NR] = $1 } END {
-    printf "| %s | %d | %d | %.2f | %.2f | %.2f | %s | %.2f / %.2f / %.2f | %s |\n", label, n, samples, one, e - s, (e - s) / one, same,
-      t[1], t[int((NR + 1) / 2)], t[NR], (n >= 64 ? sprintf("%.2f", t[NR] + (e - m)) : "-") }' "$tmp/runtimes"
+      -v samples="$samples" -v es="$empty_start" -v ee="$empty_end" '{ t[NR] = $1 } END {
+    floor = (ee - es) + (e - m)
+    printf "| %s | %d | %d | %.2f | %.2f | %.2f | %s | %.2f / %.2f / %.2f | %.2f (%.0f %%) | %s |\n", label, n, samples, one, e - s, (e - s) / one, same,
+      t[1], t[int((NR + 1) / 2)], t[NR], floor, 100 * floor / one, (n >= 64 ? sprintf("%.2f", t[NR] + (e - m)) : "-") }' "$tmp/runtimes"
 }
 
 header() {
-  printf '| shards | N | configurations drawn | one process s (%s threads, just before) | batch s (plan, %s slots, merge) | batch / one | same bytes | shard s min / median / max | 64 slots s (projected) |\n' "$slots" "$slots"
-  printf '|---|---|---|---|---|---|---|---|---|\n'
+  printf '| shards | N | configurations drawn | one process s (%s threads, just before) | batch s (plan, %s slots, merge) | batch / one | same bytes | shard s min / median / max | floor s: N empty tasks through parallel + merge (of one process) | 64 slots s (projected) |\n' "$slots" "$slots"
+  printf '|---|---|---|---|---|---|---|---|---|---|\n'
 }
 
 voxel="${FVX_BATCH_VOXEL:-0.025}"

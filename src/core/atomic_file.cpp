@@ -35,6 +35,33 @@ void check_parent_folder(const std::string& path) {
   if (fs::is_directory(path, ec)) throw FileError(path, "cannot write: it is a folder");
 }
 
+/// Where the rename goes: for a link to an existing file, the file it names, so that the link
+/// stays a link (a rename onto the link's own name would put a plain file in its place).
+std::string rename_target(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+  const fs::path resolved = fs::canonical(path, ec);
+  return ec ? path : resolved.string();
+}
+
+/// Writes the whole finished temporary into the stream `path`, then removes the temporary.
+void copy_into_stream(const std::string& temp, const std::string& path) {
+  std::ifstream in(temp, std::ios::binary);
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temp.c_str());
+    throw FileError(path, "cannot write: " + reason);
+  }
+  errno = 0;
+  out << in.rdbuf();
+  out.flush();
+  const bool failed = !out;
+  const std::string why = write_failure(errno);
+  std::remove(temp.c_str());
+  if (failed) throw FileError(path, "cannot write" + (why.empty() ? std::string(": write failed") : why));
+}
+
 void commit(const std::string& temp, const std::string& path) {
   if (std::rename(temp.c_str(), path.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
@@ -47,17 +74,25 @@ void commit(const std::string& temp, const std::string& path) {
 
 void write_path_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write) {
-  check_parent_folder(path);
-  const std::string temp = temporary_path_for(path);
+  // A stream gets the whole content once it is complete; its temporary goes to the temporary
+  // folder, since a stream's folder (/dev, /proc/self/fd) takes no new files.
+  const bool stream = is_stream_path(path);
+  const std::string target = stream ? path : rename_target(path);
+  if (!stream) check_parent_folder(target);
+  std::error_code ec;
+  const std::string temp = stream ? temporary_path_for((fs::temp_directory_path(ec) / fs::path(path).filename()).string())
+                                  : temporary_path_for(target);
   try {
     write(temp);
   } catch (...) {
     std::remove(temp.c_str());
     throw;
   }
-  std::error_code ec;
   if (!fs::is_regular_file(temp, ec)) throw FileError(path, "cannot write: the writer produced no file");
-  commit(temp, path);
+  if (stream)
+    copy_into_stream(temp, path);
+  else
+    commit(temp, target);
 }
 
 void write_file_atomically(const std::string& path,
@@ -77,6 +112,12 @@ void write_file_atomically(const std::string& path,
 
 std::string write_failure(int errno_value) {
   return errno_value == 0 ? "" : std::string(": ") + std::strerror(errno_value);
+}
+
+bool is_stream_path(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
 }
 
 std::string lowercase_extension(const std::string& path) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fvx/core/atomic_file.hpp"
 #include "fvx/core/error.hpp"
 
 namespace fvx {
@@ -58,6 +59,12 @@ bool same_file(const std::string& a, const std::string& b) {
 /// ancestor) and be writable.
 void check_writable(const Output& out) {
   std::error_code ec;
+  // A device or pipe (/dev/null, /dev/stdout) is written into, not replaced: it needs no
+  // writable folder, only to be writable itself.
+  if (!out.folder && is_stream_path(out.path)) {
+    if (::access(out.path.c_str(), W_OK) != 0) throw FileError(out.path, std::string("cannot write: ") + std::strerror(errno));
+    return;
+  }
   fs::path folder = fs::path(out.path).parent_path();
   if (folder.empty()) folder = ".";
   if (out.folder)
@@ -80,8 +87,8 @@ void check_outputs(const CommandSpec& spec, const Args& args) {
     for (const std::string& input : inputs)
       if (same_file(out.path, input))
         throw UsageError(out.option + " " + out.path + " is also an input; fvx does not write over its inputs");
-    for (std::size_t j = i + 1; j < outputs.size(); ++j)
-      if (same_file(out.path, outputs[j].path))
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)  // two outputs may share /dev/null
+      if (!is_stream_path(out.path) && same_file(out.path, outputs[j].path))
         throw UsageError(out.option + " and " + outputs[j].option + " name the same file " + out.path);
     check_writable(out);
   }

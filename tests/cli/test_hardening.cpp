@@ -48,6 +48,24 @@ TEST(Hardening, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
 }
 
+// `-o /dev/null` run as root replaced the device with a plain file (the output's temporary was
+// renamed onto it), and a pipe could not be an output at all. Both are now written into.
+TEST(Hardening, DevicesAndPipesAsOutputsAreWrittenIntoNotReplaced) {
+  const TempDir dir;
+  make_map(dir);
+  const RunResult r = run_fvx(dir, "voids m.bt -o /dev/null");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/null"));
+  ASSERT_EQ(::mkfifo((dir / "p").c_str(), 0600), 0);
+  const std::string line = "cd '" + dir.path().string() + "' && { timeout 60 cat p > got.json & '" FVX_BINARY
+                           "' voids m.bt -o p; status=$?; wait; exit $status; }";
+  const int raw = std::system(line.c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 0);
+  EXPECT_TRUE(std::filesystem::is_fifo(dir / "p"));
+  const auto report = nlohmann::json::parse(slurp(dir / "got.json"));
+  EXPECT_TRUE(report["results"].contains("void_clusters")) << report.dump().substr(0, 200);
+}
+
 TEST(Hardening, EveryOutputIsCheckedBeforeAnyIsWritten) {
   const TempDir dir;
   std::ofstream(dir / "out.bt") << "keep";

@@ -11,7 +11,10 @@ namespace fvx {
 
 /// Calls `write` with a stream onto a temporary file beside `path`, then renames it onto
 /// `path`. If `write` throws or the stream fails, the temporary is removed, `path` is left as
-/// it was, and a FileError (or the original exception) propagates.
+/// it was, and a FileError (or the original exception) propagates. A `path` that is a link
+/// to a file gets the rename at the file it names (the link stays); one that is a stream
+/// (is_stream_path) gets the finished content written into it, from a temporary file in the
+/// temporary folder.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 /// write_file_atomically with `text` as the whole content.
@@ -26,6 +29,11 @@ void write_path_atomically(const std::string& path,
 /// Why a write failed, from the errno it left: ": No space left on device" (ENOSPC), ": File
 /// too large" (EFBIG, a file size limit), …; "" when errno is 0.
 std::string write_failure(int errno_value);
+
+/// Whether `path` exists and is neither a regular file nor a folder (after links): a device
+/// such as /dev/null, a pipe (/dev/stdout, a shell's `>(…)`), a socket. Renaming a file onto
+/// it would replace the device node itself (as root, /dev/null would become a plain file).
+bool is_stream_path(const std::string& path);
 
 /// The extension of `path` in lower case, with its dot (".pcd"), or "" when it has none.
 std::string lowercase_extension(const std::string& path);

@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "fvx/core/atomic_file.hpp"
@@ -38,6 +44,44 @@ TEST(AtomicFile, AFailingWriterLeavesTheOldFileAndNoTemporary) {
 TEST(AtomicFile, MissingFolderIsAFileError) {
   const test::TempDir dir;
   EXPECT_THROW(write_file_atomically(dir / "nope/a.txt", [](std::ostream&) {}), FileError);
+}
+
+// A rename onto a device or pipe would put a plain file in the node's place (as root,
+// `-o /dev/null` replaced /dev/null); the content must go into the stream instead.
+TEST(AtomicFile, APipeIsWrittenIntoAndStaysAPipe) {
+  const test::TempDir dir;
+  const std::string fifo = dir / "out.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // The read end opened first, without blocking, so that a writer that does not open the
+  // pipe fails the test instead of hanging it; the content fits the pipe's buffer.
+  const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  write_file_atomically(fifo, [](std::ostream& out) { out << "through the pipe"; });
+  char buffer[64] = {};
+  const ssize_t n = ::read(fd, buffer, sizeof buffer);
+  ::close(fd);
+  EXPECT_EQ(std::string(buffer, std::size_t(std::max<ssize_t>(n, 0))), "through the pipe");
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_TRUE(is_stream_path(fifo));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);  // no temporary left
+}
+
+TEST(AtomicFile, DevNullStaysADevice) {
+  write_file_atomically("/dev/null", [](std::ostream& out) { out << "gone"; });
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/null"));
+  EXPECT_TRUE(is_stream_path("/dev/null"));
+  EXPECT_FALSE(is_stream_path("/"));
+  EXPECT_FALSE(is_stream_path("/nonexistent-fvx-path"));
+}
+
+TEST(AtomicFile, ALinkToAFileStaysALinkAndTheFileChanges) {
+  const test::TempDir dir;
+  write_file_atomically(dir / "real.txt", [](std::ostream& out) { out << "old"; });
+  std::filesystem::create_symlink("real.txt", dir / "link.txt");
+  write_file_atomically(dir / "link.txt", [](std::ostream& out) { out << "new"; });
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.txt"));
+  EXPECT_EQ(read(dir / "real.txt"), "new");
+  EXPECT_FALSE(is_stream_path(dir / "link.txt"));
 }
 
 TEST(AtomicFile, RequireReadable) {
