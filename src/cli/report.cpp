@@ -14,7 +14,7 @@ namespace fvx::cli {
 
 void write_report(const Json& report, const std::string& path) {
   const std::string text = report_text(report);
-  if (path.empty()) {
+  if (path.empty() || path == "-") {  // "-": standard output, as the shell's tools read it
     // A report that does not reach standard output (a full disk, a closed pipe) is a failure.
     if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
       throw Error(std::string("cannot write the report to standard output: ") + std::strerror(errno));

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -44,9 +45,43 @@ std::string rename_target(const std::string& path) {
   return ec ? path : resolved.string();
 }
 
+/// The descriptor `path` names (-, /dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N), or -1.
+int descriptor_of(const std::string& path) {
+  if (path == "-" || path == "/dev/stdout") return 1;
+  if (path == "/dev/stderr") return 2;
+  for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    if (path.rfind(prefix, 0) != 0) continue;
+    const std::string n = path.substr(prefix.size());
+    if (!n.empty() && n.size() < 9 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return std::stoi(n);
+  }
+  return -1;
+}
+
+/// Writes `n` bytes to descriptor `fd` (at its own offset: what was written there before stays).
+bool write_all(int fd, const char* data, std::size_t n) {
+  while (n > 0) {
+    const ssize_t done = ::write(fd, data, n);
+    if (done < 0 && errno == EINTR) continue;
+    if (done <= 0) return false;
+    data += done;
+    n -= std::size_t(done);
+  }
+  return true;
+}
+
 /// Writes the whole finished temporary into the stream `path`, then removes the temporary.
 void copy_into_stream(const std::string& temp, const std::string& path) {
   std::ifstream in(temp, std::ios::binary);
+  if (const int fd = descriptor_of(path); fd >= 0) {
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    std::remove(temp.c_str());
+    std::fflush(fd == 1 ? stdout : fd == 2 ? stderr : nullptr);  // what the process printed before comes first
+    errno = 0;
+    if (!write_all(fd, bytes.data(), bytes.size()))
+      throw FileError(path, "cannot write" + (errno ? write_failure(errno) : std::string(": write failed")));
+    return;
+  }
   std::ofstream out(path, std::ios::binary);
   if (!out) {
     const std::string reason = std::strerror(errno);
@@ -115,6 +150,12 @@ std::string write_failure(int errno_value) {
 }
 
 bool is_stream_path(const std::string& path) {
+  // A name for an open descriptor is written through even when it leads to a regular file
+  // (`> out.txt`): a rename would put a new file at that name while the descriptor keeps the
+  // old one.
+  if (path == "-" || path == "/dev/stdout" || path == "/dev/stderr" || path.rfind("/dev/fd/", 0) == 0 ||
+      path.rfind("/proc/", 0) == 0)
+    return true;
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   return !ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);

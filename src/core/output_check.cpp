@@ -62,6 +62,7 @@ void check_writable(const Output& out) {
   // A device or pipe (/dev/null, /dev/stdout) is written into, not replaced: it needs no
   // writable folder, only to be writable itself.
   if (!out.folder && is_stream_path(out.path)) {
+    if (out.path == "-") return;  // standard output
     if (::access(out.path.c_str(), W_OK) != 0) throw FileError(out.path, std::string("cannot write: ") + std::strerror(errno));
     return;
   }

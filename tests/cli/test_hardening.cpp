@@ -64,6 +64,13 @@ TEST(Hardening, DevicesAndPipesAsOutputsAreWrittenIntoNotReplaced) {
   EXPECT_TRUE(std::filesystem::is_fifo(dir / "p"));
   const auto report = nlohmann::json::parse(slurp(dir / "got.json"));
   EXPECT_TRUE(report["results"].contains("void_clusters")) << report.dump().substr(0, 200);
+  // "-" is standard output for a report (it was a file named "-").
+  for (const std::string& command : {std::string("voids m.bt -o -"), "integrate " + sample_scan(0) + " -o m2.bt --report -"}) {
+    const RunResult dash = run_fvx(dir, command);
+    EXPECT_EQ(dash.status, 0) << dash.err;
+    EXPECT_TRUE(nlohmann::json::parse(dash.out).contains("results")) << command;
+    EXPECT_FALSE(std::filesystem::exists(dir / "-")) << command;
+  }
 }
 
 TEST(Hardening, EveryOutputIsCheckedBeforeAnyIsWritten) {

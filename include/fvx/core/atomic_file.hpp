@@ -14,7 +14,7 @@ namespace fvx {
 /// it was, and a FileError (or the original exception) propagates. A `path` that is a link
 /// to a file gets the rename at the file it names (the link stays); one that is a stream
 /// (is_stream_path) gets the finished content written into it, from a temporary file in the
-/// temporary folder.
+/// temporary folder. "-" is standard output.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 /// write_file_atomically with `text` as the whole content.
@@ -30,7 +30,8 @@ void write_path_atomically(const std::string& path,
 /// too large" (EFBIG, a file size limit), …; "" when errno is 0.
 std::string write_failure(int errno_value);
 
-/// Whether `path` exists and is neither a regular file nor a folder (after links): a device
+/// Whether `path` is "-" (standard output) or exists and is neither a regular file nor a
+/// folder (after links): a device
 /// such as /dev/null, a pipe (/dev/stdout, a shell's `>(…)`), a socket. Renaming a file onto
 /// it would replace the device node itself (as root, /dev/null would become a plain file).
 bool is_stream_path(const std::string& path);

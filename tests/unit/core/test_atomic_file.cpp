@@ -74,6 +74,25 @@ TEST(AtomicFile, DevNullStaysADevice) {
   EXPECT_FALSE(is_stream_path("/nonexistent-fvx-path"));
 }
 
+// `{ echo first; fvx … -o /dev/stdout; } > out.txt`: a rename onto the file behind the
+// descriptor would drop what the shell wrote there before.
+TEST(AtomicFile, StandardOutputIsWrittenThroughItsDescriptorEvenWhenItIsAFile) {
+  const test::TempDir dir;
+  EXPECT_TRUE(is_stream_path("/dev/stdout"));
+  EXPECT_TRUE(is_stream_path("/dev/fd/1"));
+  EXPECT_TRUE(is_stream_path("-"));
+  const int fd = ::dup(1);
+  ASSERT_GE(fd, 0);
+  ASSERT_NE(std::freopen((dir / "out.txt").c_str(), "w", stdout), nullptr);
+  std::fputs("first\n", stdout);
+  std::fflush(stdout);
+  write_file_atomically("/dev/stdout", [](std::ostream& out) { out << "second\n"; });
+  std::fflush(stdout);
+  ::dup2(fd, 1);
+  ::close(fd);
+  EXPECT_EQ(read(dir / "out.txt"), "first\nsecond\n");
+}
+
 TEST(AtomicFile, ALinkToAFileStaysALinkAndTheFileChanges) {
   const test::TempDir dir;
   write_file_atomically(dir / "real.txt", [](std::ostream& out) { out << "old"; });
