@@ -66,11 +66,12 @@ void check_writable(const Output& out) {
     if (::access(out.path.c_str(), W_OK) != 0) throw FileError(out.path, std::string("cannot write: ") + std::strerror(errno));
     return;
   }
-  fs::path folder = fs::path(out.path).parent_path();
+  fs::path target(out.path);
+  if (out.folder && !target.has_filename()) target = target.parent_path();  // "out/" names the folder out
+  fs::path folder = target.parent_path();
+  if (out.folder)  // it creates its parents: up to the nearest that exists, or "." for a relative path
+    while (!folder.empty() && !fs::exists(folder, ec) && folder.parent_path() != folder) folder = folder.parent_path();
   if (folder.empty()) folder = ".";
-  if (out.folder)
-    while (!fs::exists(folder, ec) && folder.has_parent_path() && folder.parent_path() != folder)
-      folder = folder.parent_path();
   if (!fs::exists(folder, ec)) throw FileError(out.path, "cannot write: folder '" + folder.string() + "' does not exist");
   if (!fs::is_directory(folder, ec)) throw FileError(out.path, "cannot write: '" + folder.string() + "' is not a folder");
   if (::access(folder.c_str(), W_OK) != 0)

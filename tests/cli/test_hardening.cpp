@@ -84,6 +84,24 @@ TEST(Hardening, EveryOutputIsCheckedBeforeAnyIsWritten) {
   EXPECT_FALSE(std::filesystem::exists(dir / "new.bt"));
 }
 
+// The README's own `fvx replay session/ -o out/` was refused: "folder 'out' does not exist"
+// (a folder output's trailing slash was taken for a file in a folder out).
+TEST(Hardening, AFolderOutputMayEndInASlashAndHaveNewParents) {
+  const TempDir dir;
+  const std::string scans = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/sample/box-room/view*.pcd";
+  const RunResult replay = run_fvx(dir, "replay --scans '" + scans + "' --no-capmap --to 1 -o out/");
+  EXPECT_EQ(replay.status, 0) << replay.err;
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "out/maps"));
+  const std::string arm = std::string(std::getenv("FVX_SOURCE_DIR")) + "/data/arms/fvx-arm.urdf";
+  const RunResult plan =
+      run_fvx(dir, "batch capmap " + arm + " --base base_link --tip kinect_optical --voxel 0.05 --shards 2 -o a/b/plan/");
+  EXPECT_EQ(plan.status, 0) << plan.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "a/b/plan/tasks.txt"));
+  std::ofstream(dir / "file") << "x";
+  expect_one_line(run_fvx(dir, "batch capmap " + arm + " --base base_link --tip kinect_optical --voxel 0.05 --shards 2 -o file/plan/"),
+                  1, "is not a folder");
+}
+
 TEST(Hardening, AReportThatCannotBeWrittenIsAFailure) {
   const TempDir dir;
   make_map(dir);
