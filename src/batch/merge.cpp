@@ -17,7 +17,7 @@ Plan replay_plan(const std::string& fvx, const std::string& list, const std::vec
                  const std::string& folder, const std::string& result) {
   require_readable_file(list);
   const std::string here = fs::absolute(list).parent_path().lexically_normal().string();
-  const std::string plan_folder = fs::absolute(folder).lexically_normal().string();
+  const std::string plan_folder = absolute_path(folder);
   const std::string binary = shell_quote(fs::absolute(fvx).lexically_normal().string());
   Plan plan{"replay", plan_folder, {}, binary + " batch merge " + shell_quote(plan_folder),
             result.empty() ? plan_folder + "/tables.csv" : fs::absolute(result).lexically_normal().string()};

@@ -27,9 +27,13 @@ std::string shell_quote(const std::string& word) {
   return out + "'";
 }
 
-namespace {
+std::string absolute_path(const std::string& path) {
+  fs::path p = fs::absolute(path).lexically_normal();
+  if (!p.has_filename() && p != p.root_path()) p = p.parent_path();
+  return p.string();
+}
 
-std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+namespace {
 
 /// "shard-007-of-064.fcm": names that sort in task order.
 std::string shard_name(int i, int n) {
@@ -45,10 +49,10 @@ Plan capmap_plan(const std::string& fvx, const std::string& urdf,
                  const std::vector<std::pair<std::string, std::string>>& options, int shards,
                  const std::string& folder, const std::string& result) {
   if (shards < 1 || shards > 100000) throw UsageError("--shards " + std::to_string(shards) + ": expected 1 to 100000");
-  Plan plan{"capmap", absolute(folder), {}, "", result.empty() ? absolute(folder) + "/map.fcm" : absolute(result)};
-  std::string build = shell_quote(absolute(fvx)) + " capmap build " + shell_quote(absolute(urdf));
+  Plan plan{"capmap", absolute_path(folder), {}, "", result.empty() ? absolute_path(folder) + "/map.fcm" : absolute_path(result)};
+  std::string build = shell_quote(absolute_path(fvx)) + " capmap build " + shell_quote(absolute_path(urdf));
   for (const auto& [name, value] : options) build += " --" + name + (value.empty() ? "" : " " + shell_quote(value));
-  std::string merge = shell_quote(absolute(fvx)) + " capmap merge";
+  std::string merge = shell_quote(absolute_path(fvx)) + " capmap merge";
   for (int i = 1; i <= shards; ++i) {
     const std::string output = plan.folder + "/parts/" + shard_name(i, shards);
     const std::string report = output.substr(0, output.size() - 4) + ".json";  // the shard's report, beside it

@@ -133,7 +133,7 @@ Plan sweep_plan(const std::string& fvx, const Sweep& sweep, const std::string& f
   if (sweep.max_views < 1) throw UsageError("--max-views must be at least 1");
   check_inputs(sweep);
   const std::string here = fs::current_path().string();
-  const std::string plan_folder = fs::absolute(folder).lexically_normal().string();
+  const std::string plan_folder = absolute_path(folder);
   const std::string binary = shell_quote(fs::absolute(fvx).lexically_normal().string());
   Plan plan{"sweep", plan_folder, {}, binary + " batch merge " + shell_quote(plan_folder), plan_folder + "/summary.md"};
   const std::string tail = " --max-views " + std::to_string(sweep.max_views) + " --timing --format json";

@@ -38,6 +38,10 @@ struct Plan {
 /// The running fvx binary's absolute path (/proc/self/exe): what the tasks run.
 std::string fvx_binary();
 
+/// `path` absolute and normal, without a trailing slash ("plan/" is the folder plan), so that
+/// the paths a plan writes read "PLAN/parts/…", not "PLAN//parts/…".
+std::string absolute_path(const std::string& path);
+
 /// `word` single-quoted for sh ('it'\''s').
 std::string shell_quote(const std::string& word);
 

@@ -39,6 +39,13 @@ TEST(BatchPlan, ShardsAreNamedInTaskOrderAndMergedInIt) {
     ASSERT_NE(at, std::string::npos) << t.output;
   }
   EXPECT_THROW(capmap_plan("fvx", "a.urdf", {}, 0, "/tmp/p"), UsageError);
+  // "-o plan/" as users type it: the same paths, not ".../p//parts/...".
+  const Plan slash = capmap_plan("/usr/bin/fvx", "/arms/a b.urdf", {{"voxel", "0.05"}, {"exhaustive", ""}}, 12, "/tmp/p/");
+  EXPECT_EQ(slash.folder, "/tmp/p");
+  EXPECT_EQ(slash.tasks[2].command, plan.tasks[2].command);
+  EXPECT_EQ(slash.merge_command, plan.merge_command);
+  EXPECT_EQ(absolute_path("/"), "/");
+  EXPECT_EQ(absolute_path("/tmp/./p//"), "/tmp/p");
 }
 
 TEST(BatchPlan, AFolderHoldsOnePlan) {
