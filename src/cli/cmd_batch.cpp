@@ -107,7 +107,8 @@ void merge(const Args& args, Json& report) {
 
 void status(const Args& args, Json& report) {
   if (args.positional.size() != 2) throw UsageError("fvx batch status: give the plan's folder");
-  const std::string folder = args.positional[1], log = args.has("joblog") ? args.get("joblog") : (std::filesystem::path(folder) / "joblog").string();
+  const std::string folder = args.positional[1];
+  const std::string log = args.has("joblog") ? args.get("joblog") : (std::filesystem::path(folder) / "joblog").string();
   const batch::Status s = batch::plan_status(folder, log);
   report["inputs"] = {{"plan", folder}, {"joblog", log}};
   report["results"] = report::batch_status_json(s);

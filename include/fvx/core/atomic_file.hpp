@@ -30,10 +30,11 @@ void write_path_atomically(const std::string& path,
 /// too large" (EFBIG, a file size limit), …; "" when errno is 0.
 std::string write_failure(int errno_value);
 
-/// Whether `path` is "-" (standard output) or exists and is neither a regular file nor a
-/// folder (after links): a device
-/// such as /dev/null, a pipe (/dev/stdout, a shell's `>(…)`), a socket. Renaming a file onto
-/// it would replace the device node itself (as root, /dev/null would become a plain file).
+/// Whether `path` is a stream, written into and never renamed onto: "-" (standard output), a
+/// name for an open descriptor (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/…), or an existing
+/// path that is neither a regular file nor a folder after links (a device such as /dev/null, a
+/// pipe, a socket). A rename onto a device would replace the node itself (as root, /dev/null
+/// became a plain file); one onto a descriptor's file would leave the descriptor on the old one.
 bool is_stream_path(const std::string& path);
 
 /// The extension of `path` in lower case, with its dot (".pcd"), or "" when it has none.
