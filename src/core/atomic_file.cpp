@@ -1,5 +1,6 @@
 #include "fvx/core/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -70,31 +71,22 @@ bool write_all(int fd, const char* data, std::size_t n) {
   return true;
 }
 
-/// Writes the whole finished temporary into the stream `path`, then removes the temporary.
+/// Writes the whole finished temporary into the stream `path`, then removes the temporary. A
+/// descriptor's name is written through the descriptor this process holds; any other stream
+/// (a device, a pipe) is opened for writing.
 void copy_into_stream(const std::string& temp, const std::string& path) {
-  std::ifstream in(temp, std::ios::binary);
-  if (const int fd = descriptor_of(path); fd >= 0) {
-    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    std::remove(temp.c_str());
-    std::fflush(fd == 1 ? stdout : fd == 2 ? stderr : nullptr);  // what the process printed before comes first
-    errno = 0;
-    if (!write_all(fd, bytes.data(), bytes.size()))
-      throw FileError(path, "cannot write" + (errno ? write_failure(errno) : std::string(": write failed")));
-    return;
-  }
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    throw FileError(path, "cannot write: " + reason);
-  }
+  const int held = descriptor_of(path);
+  if (held >= 0) std::fflush(held == 1 ? stdout : held == 2 ? stderr : nullptr);  // what it printed before comes first
   errno = 0;
-  out << in.rdbuf();
-  out.flush();
-  const bool failed = !out;
+  const int fd = held >= 0 ? held : ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  bool ok = fd >= 0;
+  std::ifstream in(temp, std::ios::binary);
+  char buffer[1 << 16];
+  while (ok && in.read(buffer, sizeof buffer).gcount() > 0) ok = write_all(fd, buffer, std::size_t(in.gcount()));
   const std::string why = write_failure(errno);
+  if (fd >= 0 && held < 0) ::close(fd);
   std::remove(temp.c_str());
-  if (failed) throw FileError(path, "cannot write" + (why.empty() ? std::string(": write failed") : why));
+  if (!ok) throw FileError(path, "cannot write" + (why.empty() ? std::string(": write failed") : why));
 }
 
 void commit(const std::string& temp, const std::string& path) {
