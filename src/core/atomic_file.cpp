@@ -46,11 +46,13 @@ std::string rename_target(const std::string& path) {
   return ec ? path : resolved.string();
 }
 
-/// The descriptor `path` names (-, /dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N), or -1.
+/// The descriptor `path` names (-, /dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N and
+/// /proc/P/fd/N with P this process's own id), or -1.
 int descriptor_of(const std::string& path) {
   if (path == "-" || path == "/dev/stdout") return 1;
   if (path == "/dev/stderr") return 2;
-  for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+  const std::string own = "/proc/" + std::to_string(::getpid()) + "/fd/";
+  for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"), own}) {
     if (path.rfind(prefix, 0) != 0) continue;
     const std::string n = path.substr(prefix.size());
     if (!n.empty() && n.size() < 9 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; }))

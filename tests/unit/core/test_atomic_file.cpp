@@ -93,6 +93,20 @@ TEST(AtomicFile, StandardOutputIsWrittenThroughItsDescriptorEvenWhenItIsAFile) {
   EXPECT_EQ(read(dir / "out.txt"), "first\nsecond\n");
 }
 
+// /proc/P/fd/N with P this process's own id names a descriptor it holds, as /proc/self/fd/N
+// does: reopening it would write from the file's start over what the descriptor wrote before.
+TEST(AtomicFile, ItsOwnProcessIdsDescriptorNameIsWrittenThrough) {
+  const test::TempDir dir;
+  const int fd = ::open((dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, "first\n", 6), 6);
+  const std::string name = "/proc/" + std::to_string(::getpid()) + "/fd/" + std::to_string(fd);
+  EXPECT_TRUE(is_stream_path(name));
+  write_file_atomically(name, [](std::ostream& out) { out << "second\n"; });
+  ::close(fd);
+  EXPECT_EQ(read(dir / "out.txt"), "first\nsecond\n");
+}
+
 TEST(AtomicFile, ALinkToAFileStaysALinkAndTheFileChanges) {
   const test::TempDir dir;
   write_file_atomically(dir / "real.txt", [](std::ostream& out) { out << "old"; });
