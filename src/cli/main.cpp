@@ -7,6 +7,7 @@
 
 #include "command_table.hpp"
 #include "fvx/core/error.hpp"
+#include "fvx/core/memory.hpp"
 
 namespace {
 
@@ -19,6 +20,7 @@ void report(const char* message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fvx::core::use_huge_page_heap();
   try {
     return fvx::cli::run(argc, argv);
   } catch (const fvx::UsageError& e) {

@@ -1,6 +1,14 @@
 #include "fvx/core/memory.hpp"
 
+#include <malloc.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 #include "fvx/core/error.hpp"
@@ -34,6 +42,53 @@ void require_memory_for_box(const Eigen::AlignedBox3d& box_m, double resolution_
   else
     std::snprintf(limit, sizeof limit, ", more than the 4000 M a grid indexes");
   throw Error(what + figures + limit + "; " + advice);
+}
+
+namespace {
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define FVX_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define FVX_SANITIZED_ALLOCATOR 1
+#endif
+
+[[maybe_unused]] bool strict_overcommit() {
+  std::ifstream mode("/proc/sys/vm/overcommit_memory");
+  int value = 0;
+  return mode >> value && value == 2;
+}
+
+/// 512 MiB, or an eighth of the address-space limit when one is set (ulimit -v).
+[[maybe_unused]] std::size_t heap_reserve_bytes() {
+  std::size_t reserve = std::size_t(512) << 20;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    reserve = std::min<std::size_t>(reserve, std::size_t(limit.rlim_cur) / 8);
+  return reserve;
+}
+
+}  // namespace
+
+void use_huge_page_heap() {
+#ifndef FVX_SANITIZED_ALLOCATOR
+  if (std::getenv("FVX_DEFAULT_HEAP") || strict_overcommit()) return;
+  const std::size_t reserve = heap_reserve_bytes(), huge_page = std::size_t(2) << 20;
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest: blocks up to 32 MiB come from the heap
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and the reserve is not handed back when they are freed
+  mallopt(M_ARENA_MAX, 1);              // threads too (each thread's arena would fault its own pages)
+  mallopt(M_TOP_PAD, int(reserve));
+  void* block = std::malloc(std::size_t(1) << 20);  // more than a new heap holds: it grows by the reserve
+  const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const auto start = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) & ~(huge_page - 1);
+  // Only when the block lies in the heap below its end (not mapped elsewhere on a failure).
+  if (block && start < end && end - start <= reserve + huge_page)
+    madvise(reinterpret_cast<void*>(start), end - start, MADV_HUGEPAGE);  // advice: without THP, no harm
+  std::free(block);
+  mallopt(M_TOP_PAD, 128 << 10);  // glibc's default: the heap grows as usual beyond the reserve
+#endif
 }
 
 }  // namespace fvx::core
