@@ -78,7 +78,6 @@ void use_huge_page_heap() {
   const std::size_t reserve = heap_reserve_bytes(), huge_page = std::size_t(2) << 20;
   mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest: blocks up to 32 MiB come from the heap
   mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and the reserve is not handed back when they are freed
-  mallopt(M_ARENA_MAX, 1);              // threads too (each thread's arena would fault its own pages)
   mallopt(M_TOP_PAD, int(reserve));
   void* block = std::malloc(std::size_t(1) << 20);  // more than a new heap holds: it grows by the reserve
   const auto end = reinterpret_cast<std::uintptr_t>(sbrk(0));

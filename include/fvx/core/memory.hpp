@@ -22,11 +22,12 @@ void require_memory_for_box(const Eigen::AlignedBox3d& box_m, double resolution_
 /// Once, at the start of a process (fvx's main), before the work allocates: glibc's heap is
 /// made to grow once by 512 MiB (less under a smaller address-space limit) of address space
 /// backed by transparent huge pages, to serve every block up to 32 MiB from it (glibc would
-/// map each block above 128 KiB on its own, and unmap it when freed), and all threads from it
-/// (one arena). Why: each first touch of a 4 KiB page is a page fault, and on the virtual
+/// map each block above 128 KiB on its own, and unmap it when freed). Other threads keep
+/// their own arenas: one arena for all made `fvx capmap build` 2.7x slower (its threads waited
+/// on the arena's lock). Why: each first touch of a 4 KiB page is a page fault, and on the virtual
 /// machines fvx was measured on a fault costs about 11 µs, 3 ms per MiB touched: the
 /// analysis's key lists and clusters, grown a block at a time, made 35 000 faults (a third of
-/// a second) of `fvx nbv` on geb079, 900 with this (README, "Page faults"). Freed blocks stay
+/// a second) of `fvx nbv` on geb079, 5 900 with this (README, "Page faults"). Freed blocks stay
 /// in the heap for the next one instead of being faulted in again. Nothing is done under
 /// strict overcommit (vm.overcommit_memory = 2, where the reserve would be charged), under the
 /// sanitizers (they bring their own allocator), or when FVX_DEFAULT_HEAP is set.
