@@ -55,14 +55,14 @@ namespace {
 #define FVX_SANITIZED_ALLOCATOR 1
 #endif
 
-[[maybe_unused]] bool strict_overcommit() {
+[[maybe_unused]] bool strict_overcommit() {  // unused under the sanitizers
   std::ifstream mode("/proc/sys/vm/overcommit_memory");
   int value = 0;
   return mode >> value && value == 2;
 }
 
 /// 512 MiB, or an eighth of the address-space limit when one is set (ulimit -v).
-[[maybe_unused]] std::size_t heap_reserve_bytes() {
+std::size_t heap_reserve_bytes() {
   std::size_t reserve = std::size_t(512) << 20;
   rlimit limit{};
   if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
@@ -72,9 +72,16 @@ namespace {
 
 }  // namespace
 
+bool huge_page_heap_applies() {
+#ifdef FVX_SANITIZED_ALLOCATOR
+  return false;
+#else
+  return !std::getenv("FVX_DEFAULT_HEAP") && !strict_overcommit();
+#endif
+}
+
 void use_huge_page_heap() {
-#ifndef FVX_SANITIZED_ALLOCATOR
-  if (std::getenv("FVX_DEFAULT_HEAP") || strict_overcommit()) return;
+  if (!huge_page_heap_applies()) return;
   const std::size_t reserve = heap_reserve_bytes(), huge_page = std::size_t(2) << 20;
   mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest: blocks up to 32 MiB come from the heap
   mallopt(M_TRIM_THRESHOLD, 1 << 30);   // and the reserve is not handed back when they are freed
@@ -87,7 +94,6 @@ void use_huge_page_heap() {
     madvise(reinterpret_cast<void*>(start), end - start, MADV_HUGEPAGE);  // advice: without THP, no harm
   std::free(block);
   mallopt(M_TOP_PAD, 128 << 10);  // glibc's default: the heap grows as usual beyond the reserve
-#endif
 }
 
 }  // namespace fvx::core

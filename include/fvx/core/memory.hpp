@@ -32,5 +32,8 @@ void require_memory_for_box(const Eigen::AlignedBox3d& box_m, double resolution_
 /// strict overcommit (vm.overcommit_memory = 2, where the reserve would be charged), under the
 /// sanitizers (they bring their own allocator), or when FVX_DEFAULT_HEAP is set.
 void use_huge_page_heap();
+/// Whether use_huge_page_heap() does anything in this process: not under the sanitizers'
+/// allocator, strict overcommit or FVX_DEFAULT_HEAP.
+bool huge_page_heap_applies();
 
 }  // namespace fvx::core
