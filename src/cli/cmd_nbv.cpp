@@ -33,6 +33,8 @@ const CommandSpec kNbvSpec = {
                  {"top", 'n', "N", "ranked views to report", "/config/top", dflt(kNbv.top), in(1, kMaxInt)},
                  {"poses", 'N', "N", "stop after N valid poses", "/config/valid_poses", dflt(kNbv.valid_poses) + ", as in the paper",
                   in(1, kMaxInt)},
+                 {"rescore", 0, "K", "rescore the K best screened poses with the full fan of rays",
+                  "/config/rescored_poses", "0: top + min(top, 10)", in(0, kMaxInt)},
                  {"orientations", 0, "K", "orientations sampled per candidate cell", "/config/orientations_per_cell",
                   dflt(kNbv.orientations_per_cell), in(1, 10000)},
                  {"separation", 0, "M", "pass over cells nearer than M to a viewpoint already used, metres",

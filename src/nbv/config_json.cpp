@@ -9,6 +9,7 @@ Json config_json(const Config& c) {
           {"sensor", io::camera_json(c.sensor)},
           {"rays", {c.ray_cols, c.ray_rows}},
           {"coarse_rays", {c.coarse_ray_cols, c.coarse_ray_rows}},
+          {"rescored_poses", c.rescored_poses},
           {"valid_poses", c.valid_poses},
           {"orientations_per_cell", c.orientations_per_cell},
           {"jitter_deg", c.jitter_deg},

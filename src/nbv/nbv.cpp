@@ -48,6 +48,7 @@ std::vector<std::string> Config::validate() const {
   if (coarse_ray_cols < 0 || coarse_ray_rows < 0 || (coarse_ray_cols == 0) != (coarse_ray_rows == 0))
     problems.push_back("coarse_ray_cols and coarse_ray_rows must both be >= 1, or both 0 (off)");
   if (valid_poses < 1) problems.push_back("valid_poses (N) must be >= 1");
+  if (rescored_poses < 0) problems.push_back("rescored_poses must be >= 0");
   if (orientations_per_cell < 1) problems.push_back("orientations_per_cell must be >= 1");
   if (!(jitter_deg >= 0.0 && jitter_deg <= 90.0)) problems.push_back("jitter_deg must be in [0, 90]");
   if (!(min_separation_m >= 0.0 && min_separation_m <= 10.0)) problems.push_back("min_separation_m must be in [0, 10] m");
@@ -159,7 +160,7 @@ Result select_frontier_void(Search& s, const utility::Field& field, Result resul
   t0 = Stopwatch();
   std::vector<std::size_t> U = s.score(*s.void_scorer, poses, result, s.screen_fan());
   refine(s, poses, U, result);
-  result.views = s.rank(poses, U, &field.util_m3, &field);
+  result.views = s.rank(poses, U, pruning, &field.util_m3, &field);
   result.timing.scoring_s = t0.seconds();
 
   if (!result.views.empty()) return result;
@@ -191,7 +192,8 @@ struct PreparedSearch::State {
 
 PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
                                std::optional<Reach> reach, Config config,
-                               const std::vector<map::VoxelKey>& hidden_void_cells)
+                               const std::vector<map::VoxelKey>& hidden_void_cells,
+                               std::vector<Eigen::Isometry3d> taken_views)
     : state_(std::make_unique<State>()) {
   State& st = *state_;
   st.start = Stopwatch();
@@ -219,6 +221,7 @@ PreparedSearch::PreparedSearch(const map::OccupancyMap& map, const frontier_void
   Stopwatch t0;
   if (st.config.progress) st.config.progress("dense grid and distance transform", 0, 0);
   st.search = std::make_unique<detail::Search>(map, analysis, st.reach, st.config, hidden_void_cells);
+  st.search->taken_views = std::move(taken_views);
   st.result.timing.grid_s = t0.seconds();
 }
 
@@ -247,6 +250,9 @@ Result PreparedSearch::viewpoints() {
     case Strategy::Random: result = detail::select_random(*st.search, std::move(result)); break;
   }
   st.field.reset();
+  if (result.views.empty() && result.pruning.already_taken > 0)
+    result.reason = "every view found repeats one already taken (" + std::to_string(result.pruning.already_taken) +
+                    " passed over)";
   result.timing.total_s = st.start.seconds();
   return result;
 }
@@ -257,8 +263,16 @@ Result PreparedSearch::run() {
 }
 
 Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, const std::optional<Reach>& reach,
-              const Config& config, const std::vector<map::VoxelKey>& hidden_void_cells) {
-  return PreparedSearch(map, analysis, reach, config, hidden_void_cells).run();
+              const Config& config, const std::vector<map::VoxelKey>& hidden_void_cells,
+              std::vector<Eigen::Isometry3d> taken_views) {
+  return PreparedSearch(map, analysis, reach, config, hidden_void_cells, std::move(taken_views)).run();
+}
+
+bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  constexpr double kSamePosition_m = 0.05;
+  constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
+  return (a.translation() - b.translation()).norm() < kSamePosition_m &&
+         a.linear().col(2).dot(b.linear().col(2)) > std::cos(kSameDirection_rad);
 }
 
 }  // namespace fvx::nbv

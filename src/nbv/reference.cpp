@@ -141,7 +141,7 @@ Result select_exhaustive(Search& s, Result result) {
   // IK only for the poses that make the ranking (it would cost seconds for all of them).
   t0 = Stopwatch();
   Pruning ik_pruning;
-  result.views = s.rank(poses, U, nullptr, nullptr, [&](Pose& pose, std::size_t i) {
+  result.views = s.rank(poses, U, pruning, nullptr, nullptr, [&](Pose& pose, std::size_t i) {
     return !s.reach->arm || s.keep_orientation(pose, s.config.seed + 0x9E3779B97F4A7C15ull * (i + 1), ik_pruning);
   });
   pruning.ik_failed = ik_pruning.ik_failed;
@@ -206,7 +206,7 @@ Result select_frontier(Search& s, Result result) {
   const viewpoints::FovScorer scorer(s.grid, std::move(mask), s.rays_sensor, s.config.sensor.depth_max_m,
                                      s.config.sensor.depth_min_m);
   const std::vector<std::size_t> seen = s.score(scorer, poses, result);
-  result.views = s.rank(poses, seen, &rays_through, nullptr);
+  result.views = s.rank(poses, seen, result.pruning, &rays_through, nullptr);
   for (View& v : result.views) {  // rank() reads the field as util(c): it is a ray count here
     v.frontier_rays_through_cell = v.accumulated_utility_m3;
     v.accumulated_utility_m3 = 0.0;
@@ -278,10 +278,10 @@ Result select_random(Search& s, Result result) {
     const std::size_t seen = s.score(*s.void_scorer, {pose}, result).front();
     poses.push_back(std::move(pose));
     U.push_back(seen);
-    if (seen > 0) break;
+    if (seen > 0 && !s.repeats_taken(poses.back().T_world_sensor)) break;
   }
   result.timing.scoring_s = t0.seconds();
-  result.views = s.rank(poses, U, nullptr, nullptr);
+  result.views = s.rank(poses, U, result.pruning, nullptr, nullptr);
   if (result.views.empty())
     result.reason = "none of " + std::to_string(poses.size()) + " random reachable poses (" +
                     std::to_string(s.config.random_tries) + " drawn) sees a void cell";

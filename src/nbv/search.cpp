@@ -428,7 +428,12 @@ void Search::name_seen(View& v, const std::vector<std::size_t>& seen) const {
                    [](const auto& l, const auto& r) { return l.second > r.second; });
 }
 
-std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
+bool Search::repeats_taken(const Eigen::Isometry3d& T_world_sensor) const {
+  return std::any_of(taken_views.begin(), taken_views.end(),
+                     [&](const Eigen::Isometry3d& T) { return same_view(T, T_world_sensor); });
+}
+
+std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score, Pruning& pruning,
                                const core::LargeVector<double>* util_m3, const utility::Field* field,
                                const std::function<bool(Pose&, std::size_t)>& accept) const {
   const bool screened = screen_fan() != nullptr;  // `score` came from the coarse fan
@@ -437,11 +442,19 @@ std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::
     if (score[i] > 0) order.push_back(i);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return score[l] > score[r]; });
   const std::size_t top = std::size_t(config.top);
-  const std::size_t wanted = top + (screened ? std::min(top, kRescoredBeyondTop) : 0);
+  const std::size_t wanted = !screened                 ? top
+                             : config.rescored_poses > 0 ? std::max(top, std::size_t(config.rescored_poses))
+                                                         : top + std::min(top, kRescoredBeyondTop);
   std::vector<std::size_t> chosen;  // accepted, in score order
   for (const std::size_t i : order) {
     if (chosen.size() >= wanted) break;
-    if (!accept || accept(poses[i], i)) chosen.push_back(i);
+    if (accept && !accept(poses[i], i)) continue;
+    // After `accept`, which may move the pose: the view the loop would take is compared.
+    if (repeats_taken(poses[i].T_world_sensor)) {
+      ++pruning.already_taken;
+      continue;
+    }
+    chosen.push_back(i);
   }
   std::vector<View> described(chosen.size());
   std::vector<std::vector<std::size_t>> seen(chosen.size());

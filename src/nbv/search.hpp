@@ -79,9 +79,12 @@ struct Search {
   /// joints); the described U ranks the views (frontier strategy: `score`). Screened
   /// (screen_fan(): `score` came from the coarse fan), a few more than config.top views
   /// are described.
-  std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score,
+  /// Poses that repeat a taken view (repeats_taken) are passed over, counted in `pruning`.
+  std::vector<View> rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score, Pruning& pruning,
                          const core::LargeVector<double>* util_m3, const utility::Field* field,
                          const std::function<bool(Pose&, std::size_t)>& accept = nullptr) const;
+  /// The pose is the same view (same_view) as one in taken_views.
+  bool repeats_taken(const Eigen::Isometry3d& T_world_sensor) const;
   /// Pose `i` as a view: U with the full fan, the field's value and contributors at its
   /// cell; the void cells seen go to `seen` (grid indices, ascending).
   View describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
@@ -156,6 +159,8 @@ struct Search {
   /// the sum of the unit steps to its unknown face-neighbours (zero: none), read from the map.
   const frontiers::Cluster* frontier_target = nullptr;
   std::vector<Eigen::Vector3d> toward_unknown;
+  /// Where the loop's views were taken (PreparedSearch): copied, as the loop goes on.
+  std::vector<Eigen::Isometry3d> taken_views;
 };
 
 /// A pose at p_world with rotation R that serves the same cell as `from` (index from_index).

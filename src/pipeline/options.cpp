@@ -106,6 +106,7 @@ nbv::Config read_search_options(const Args& args) {
   std::tie(config.ray_cols, config.ray_rows) = parse_rays(args);
   args.read("top", config.top);
   args.read("poses", config.valid_poses);
+  args.read("rescore", config.rescored_poses);
   args.read("orientations", config.orientations_per_cell);
   args.read("jitter", config.jitter_deg);
   args.read("separation", config.min_separation_m);

@@ -18,7 +18,7 @@ void Config::tie_to_search() {
   filter.depth_min_m = nbv.sensor.depth_min_m;
   filter.depth_max_m = clear_beyond_range ? std::numeric_limits<double>::infinity() : nbv.sensor.depth_max_m;
   clusters.seed = nbv.seed;
-  nbv.top = std::max(nbv.top, nbv.valid_poses);
+  if (nbv.rescored_poses == 0) nbv.rescored_poses = std::max(nbv.top, nbv.valid_poses) + 10;
 }
 
 std::vector<std::string> Config::validate() const {
@@ -130,7 +130,7 @@ void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_c
 
 nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, const std::optional<nbv::Reach>& reach,
                                    const Config& config) {
-  return nbv::PreparedSearch(state.map, r.analysis, reach, config.nbv, state.hidden_void_cells);
+  return nbv::PreparedSearch(state.map, r.analysis, reach, config.nbv, state.hidden_void_cells, state.taken_views);
 }
 
 StepResult run_step(State& state, scan::Scan scan, const std::optional<nbv::Reach>& reach, const Config& config,

@@ -132,7 +132,8 @@ Json pruning_json(const nbv::Pruning& p) {
           {"refinement_poses", p.refinement_poses},
           {"polish_poses", p.polish_poses},
           {"culled_no_void_in_frustum", p.culled},
-          {"seeing_no_void", p.seeing_nothing}};
+          {"seeing_no_void", p.seeing_nothing},
+          {"already_taken", p.already_taken}};
 }
 
 }  // namespace

@@ -15,10 +15,6 @@ namespace fvx::session {
 namespace {
 
 
-// A ranked view this close to a view already taken repeats it.
-constexpr double kSamePosition_m = 0.05;
-constexpr double kSameDirection_rad = 10.0 * M_PI / 180.0;
-
 /// The prior a robot would record: the true pose off by Gaussian noise.
 Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T_true, double sigma_m, double sigma_deg, std::mt19937_64& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -42,16 +38,11 @@ Eigen::Isometry3d executed(const nbv::View& view, const std::optional<nbv::Reach
 
 }  // namespace
 
-bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return (a.translation() - b.translation()).norm() < kSamePosition_m &&
-         a.linear().col(2).dot(b.linear().col(2)) > std::cos(kSameDirection_rad);
-}
-
 std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
                                                 const std::vector<Eigen::Isometry3d>& taken) {
   for (std::size_t i = 0; i < views.size(); ++i)
     if (std::none_of(taken.begin(), taken.end(),
-                     [&](const Eigen::Isometry3d& T) { return same_view(T, views[i].T_world_sensor); }))
+                     [&](const Eigen::Isometry3d& T) { return nbv::same_view(T, views[i].T_world_sensor); }))
       return i;
   return std::nullopt;
 }
@@ -97,7 +88,6 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
   std::mt19937_64 noise_rng(config.seed ^ 0x6A09E667F3BCC909ull);
   std::vector<map::VoxelKey> previous_voids;
   std::size_t previous_prediction = 0;
-  std::vector<Eigen::Isometry3d> visited;  // true poses of the views taken
   std::vector<map::VoxelKey> expected;     // void cells the view about to be taken should reveal
   ExploreResult result;
   for (int view = 0; view < config.max_views; ++view) {
@@ -119,6 +109,7 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     scan.source = "view " + std::to_string(view);
     scan.points_sensor = record.points_sensor;
     scan.T_world_sensor = record.T_world_sensor_prior;
+    pipeline.taken_at(T_true);  // the true pose: a ranked view this near repeats it
     record.step = pipeline.step(std::move(scan), view > 0 ? &expected : nullptr);
 
     record.previous_prediction = previous_prediction;
@@ -126,12 +117,12 @@ ExploreResult explore(const Sensor& sensor, const std::optional<nbv::Reach>& rea
     for (const map::VoxelKey& k : previous_voids) record.revealed_void_cells += read(k) != map::VoxelState::Unknown;
     previous_voids = record.step.analysis.void_cells;
     const nbv::Result& next = record.step.nbv;
-    visited.push_back(record.T_world_sensor_true);
-    // The best ranked view not taken yet: one already taken revealed what it could.
-    record.chosen = first_view_not_taken(next.views, visited);
+    // The best ranked view not taken yet (the search passed over those): one already taken
+    // revealed what it could.
+    record.chosen = first_view_not_taken(next.views, state.taken_views);
     on_view(record, state);
     result.views = view + 1;
-    if (next.views.empty()) {
+    if (next.views.empty() && next.pruning.already_taken == 0) {
       result.end = "utility 0: " + next.reason;
       result.utility_exhausted = true;
       return result;

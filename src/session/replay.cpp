@@ -64,7 +64,7 @@ pipeline::Config step_config_of(const ReplayConfig& config, int view) {
 void against_choice(const Eigen::Isometry3d& logged, const std::optional<nbv::View>& chosen, pipeline::State& state,
                     ReplayView& out) {
   if (!chosen) return;
-  out.at_choice = same_view(logged, chosen->T_world_sensor);
+  out.at_choice = nbv::same_view(logged, chosen->T_world_sensor);
   if (out.at_choice) pipeline::mark_hidden(state, chosen->seen_void_cells, out.step);
   out.from_choice_m = (logged.translation() - chosen->T_world_sensor.translation()).norm();
   out.from_choice_deg = axis_angle_rad(logged, chosen->T_world_sensor) * 180.0 / M_PI;
@@ -113,7 +113,6 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
       config.last_view < 0 ? scans.size() : std::min(scans.size(), std::size_t(config.last_view) + 1);
 
   pipeline::State state(config.pipeline.resolution_m);
-  std::vector<Eigen::Isometry3d> taken;     // the poses the views were taken at
   std::vector<map::VoxelKey> previous_voids;
   std::optional<nbv::View> chosen;          // the previous view's choice
   // The search of view i runs while scan i + 1 is registered, integrated and analysed: the
@@ -129,7 +128,7 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
       out.step.searched = true;
       out.step.timing.search_s = f.prepare_s + run_s;
     }
-    out.chosen = first_view_not_taken(out.step.nbv.views, taken);
+    out.chosen = first_view_not_taken(out.step.nbv.views, state.taken_views);
     if (out.chosen) chosen = out.step.nbv.views[*out.chosen];
     else chosen.reset();
     on_view(out);
@@ -170,7 +169,9 @@ void replay(const std::vector<RecordedScan>& scans, const std::optional<nbv::Rea
     finish_in_flight();  // the previous view's choice decides what this scan hides
 
     against_choice(logged, chosen, state, *out);
-    taken.push_back(scans[i].T_world_sensor_true.value_or(out->step.T_world_sensor));
+    // Where the view was taken (the recording's, else the registered pose): the search
+    // launched below passes over poses that repeat one of these.
+    state.taken_views.push_back(scans[i].T_world_sensor_true.value_or(out->step.T_world_sensor));
     auto bookkeeping = account(state, *out, std::move(previous_voids), config.pipeline.resolution_m, on_map);
     previous_voids = out->step.analysis.void_cells;
     in_flight = launch(state, std::move(out), reach, step_config);

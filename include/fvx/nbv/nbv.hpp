@@ -75,6 +75,11 @@ struct Config {
   /// quarter of the rays counts fewer cells, yet ranks poses alike (README, "Screening").
   int coarse_ray_cols = 40;
   int coarse_ray_rows = 30;
+  /// Screened, the full fan rescores this many of the best screened poses (passing over
+  /// those that repeat a taken view), and the `top` best of them are reported. 0: top +
+  /// min(top, 10). The loops rescore N + 10 (Config::tie_to_search in pipeline): the views
+  /// they take are then those of a search that described every valid pose (README, issue 15).
+  int rescored_poses = 0;
   int valid_poses = 50;               ///< N: the search stops after this many valid poses (paper: 50)
   int orientations_per_cell = 2;      ///< orientations sampled at each candidate cell
   double jitter_deg = 5.0;            ///< tilt of sampled axes around their target, degrees
@@ -200,6 +205,8 @@ struct Pruning {
   std::size_t polish_poses = 0;             ///< other rolls and climb steps that passed the checks, scored as well
   std::size_t culled = 0;                   ///< exhaustive: poses with no void cluster in their frustum (U = 0)
   std::size_t seeing_nothing = 0;           ///< valid poses with U = 0
+  /// Passed over by the ranking: the same view (same_view) as one the loop already took.
+  std::size_t already_taken = 0;
 };
 
 struct Timing {
@@ -226,6 +233,11 @@ struct Result {
   std::string reason;            ///< why `views` is empty; empty otherwise
 };
 
+/// Two sensor poses are the same view within 5 cm and 10° between their optical axes. The
+/// loops' searches pass over poses this close to a view already taken: it revealed what it
+/// could.
+bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
 namespace detail {
 struct Search;
 }
@@ -236,11 +248,15 @@ struct Search;
 /// `analysis` must outlive it; reach and config are copied. `hidden_void_cells` (key order):
 /// void cells that a view already taken looked at without revealing them (something the map
 /// does not hold yet blocks them from there); they no longer count in U or u_i. The
-/// exploration loop keeps them (pipeline::State); empty for a single search.
+/// exploration loop keeps them (pipeline::State); empty for a single search. `taken_views`:
+/// where the loop's views were taken (world frame); a pose that is the same view as one of
+/// them (same_view) is not ranked, so the views are the best new ones (Pruning::already_taken
+/// counts those passed over); empty for a single search.
 class PreparedSearch {
  public:
   PreparedSearch(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis, std::optional<Reach> reach,
-                 Config config, const std::vector<map::VoxelKey>& hidden_void_cells = {});
+                 Config config, const std::vector<map::VoxelKey>& hidden_void_cells = {},
+                 std::vector<Eigen::Isometry3d> taken_views = {});
   PreparedSearch(PreparedSearch&&) noexcept;
   PreparedSearch& operator=(PreparedSearch&&) noexcept;
   ~PreparedSearch();
@@ -260,9 +276,10 @@ class PreparedSearch {
 
 /// Selects the next best views for the map analysed in `analysis` (frontiers, voids and
 /// frontier-voids within the search space). Deterministic for a given seed, on any number
-/// of threads. The same as PreparedSearch(map, analysis, reach, config).run().
+/// of threads. The same as PreparedSearch(map, analysis, reach, config, …).run().
 Result select(const map::OccupancyMap& map, const frontier_voids::Analysis& analysis,
               const std::optional<Reach>& reach, const Config& config,
-              const std::vector<map::VoxelKey>& hidden_void_cells = {});
+              const std::vector<map::VoxelKey>& hidden_void_cells = {},
+              std::vector<Eigen::Isometry3d> taken_views = {});
 
 }  // namespace fvx::nbv

@@ -56,9 +56,10 @@ struct Config {
   int min_void_width_cells() const;
   /// For the loops, once the search's sensor and seed are set: the scan filter keeps the
   /// sensor's depth range (what the search models is what is integrated), region growing
-  /// takes the search's seed, and every valid pose is ranked (top >= valid_poses): a loop
-  /// passes over ranked views that repeat a view already taken, and ten may all do so.
-  /// One call instead of copies in each command.
+  /// takes the search's seed, and the full fan rescores max(top, N) + 10 screened poses
+  /// unless rescored_poses is set: the views the loops take are those of a search that
+  /// described every valid pose, for a third less scoring (README, issue 15). One call
+  /// instead of copies in each command.
   void tie_to_search();
   std::vector<std::string> validate() const;
 };
@@ -82,6 +83,9 @@ struct State {
   /// Void cells a scan was expected to reveal (taken at a chosen view) that stayed unknown:
   /// hidden from there, they leave U (nbv::PreparedSearch's hidden_void_cells). Key order.
   std::vector<map::VoxelKey> hidden_void_cells;
+  /// Where the loop's views were taken (world frame, as the loop knows them): the search
+  /// ranks only poses that repeat none of them (nbv::PreparedSearch's taken_views).
+  std::vector<Eigen::Isometry3d> taken_views;
   int steps = 0;
   /// The last step updated frontier_set and void_set (Config::analyse); otherwise the next
   /// step that analyses rebuilds them from the map.
@@ -115,8 +119,8 @@ StepResult integrate_step(State& state, scan::Scan scan, const Config& config);
 void mark_hidden(State& state, const std::vector<map::VoxelKey>& expected_void_cells, StepResult& r);
 
 /// Step 7 with what it reads of the map copied (nbv::PreparedSearch), and the hidden void
-/// cells so far: the state may take the next scan while run() goes on. r.analysis must
-/// outlive it.
+/// cells and taken views so far: the state may take the next scan while run() goes on.
+/// r.analysis must outlive it.
 nbv::PreparedSearch prepare_search(const State& state, const StepResult& r, const std::optional<nbv::Reach>& reach,
                                    const Config& config);
 
@@ -144,6 +148,9 @@ class Pipeline {
   /// run_step with this view's own seed, config.nbv.seed + the steps so far, so that each
   /// view's search draws its own random numbers (the same for the same seed).
   StepResult step(scan::Scan scan, const std::vector<map::VoxelKey>* expected_void_cells = nullptr);
+  /// The next scan is taken at T_world_sensor (State::taken_views): from the step after it
+  /// on, the search passes over poses that repeat it.
+  void taken_at(const Eigen::Isometry3d& T_world_sensor) { state_.taken_views.push_back(T_world_sensor); }
   const State& state() const { return state_; }
   const map::OccupancyMap& map() const { return state_.map; }
   const Config& config() const { return config_; }

@@ -143,11 +143,9 @@ struct ExploreResult {
   bool utility_exhausted = false;  ///< the planner found no view with U > 0
 };
 
-/// Two sensor poses are the same view within 5 cm and 10° between their optical axes (the
-/// explore loop passes over ranked views this close to one already taken).
-bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
-
-/// The best ranked view (index into `views`) that is not the same view as one in `taken`.
+/// The best ranked view (index into `views`) that is not the same view (nbv::same_view) as
+/// one in `taken`. The loops' searches already pass over such poses (State::taken_views):
+/// this is their guard.
 std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
                                                 const std::vector<Eigen::Isometry3d>& taken);
 

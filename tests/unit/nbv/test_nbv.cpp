@@ -140,6 +140,46 @@ TEST(Nbv, EveryViewIsReachableInFreeSpaceOrAirAndClearWithItsJoints) {
   for (std::size_t i = 1; i < r.views.size(); ++i) EXPECT_GE(r.views[i - 1].void_cells_seen, r.views[i].void_cells_seen);
 }
 
+// The loops' searches pass over poses that repeat a view already taken (taken_views). The
+// screened ranking rescores the first `top` + 10 poses in the coarse order with the full fan;
+// with views taken it rescores the first that many new ones, a superset of the untaken
+// search's new ones: its best view sees at least as much as the untaken search's best new one.
+TEST(Nbv, TheLoopsSearchPassesOverViewsAlreadyTaken) {
+  const ClosedBox& box = closed_box();
+  const Arm arm;
+  const Reach reach = arm.reach({0.2, 0.0, 0.0});
+  const Config config = coarse();
+  const Result free_choice = select(box.map, box.analysis, reach, config);
+  ASSERT_GE(free_choice.views.size(), 3u) << free_choice.reason;
+  EXPECT_EQ(free_choice.pruning.already_taken, 0u);
+  const std::vector<Eigen::Isometry3d> taken = {free_choice.views[0].T_world_sensor,
+                                                free_choice.views[1].T_world_sensor};
+  const auto repeats = [&](const View& v) {
+    return std::any_of(taken.begin(), taken.end(), [&](const auto& T) { return same_view(T, v.T_world_sensor); });
+  };
+  const auto first_new = std::find_if_not(free_choice.views.begin(), free_choice.views.end(), repeats);
+  ASSERT_NE(first_new, free_choice.views.end());
+
+  const Result r = select(box.map, box.analysis, reach, config, {}, taken);
+  ASSERT_FALSE(r.views.empty()) << r.reason;
+  EXPECT_GE(r.pruning.already_taken, 2u);
+  for (const View& v : r.views) EXPECT_FALSE(repeats(v)) << "view " << v.pose_index << " repeats a taken one";
+  EXPECT_GE(r.views[0].void_cells_seen, first_new->void_cells_seen);
+  EXPECT_EQ(r.poses_scored, free_choice.poses_scored);  // the same poses were scored; only the ranking differs
+
+  // Every pose the search scores taken: nothing new is left, and the reason says so.
+  std::vector<Eigen::Isometry3d> all;
+  for (const View& v : select(box.map, box.analysis, reach, [&] {
+         Config every = config;
+         every.top = 1000;
+         return every;
+       }()).views)
+    all.push_back(v.T_world_sensor);
+  const Result none = select(box.map, box.analysis, reach, config, {}, all);
+  EXPECT_TRUE(none.views.empty());
+  EXPECT_NE(none.reason.find("repeats one already taken"), std::string::npos) << none.reason;
+}
+
 // Refinement only adds poses: the best U never drops, the paper's N poses are unchanged, and
 // each stepped-back view lies on the optical axis behind the pose it came from.
 TEST(Nbv, SteppingBackAddsPosesBehindTheBestOnes) {
