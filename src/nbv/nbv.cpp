@@ -275,4 +275,8 @@ bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
          a.linear().col(2).dot(b.linear().col(2)) > std::cos(kSameDirection_rad);
 }
 
+bool repeats_taken(const std::vector<Eigen::Isometry3d>& taken, const Eigen::Isometry3d& T) {
+  return std::any_of(taken.begin(), taken.end(), [&](const Eigen::Isometry3d& T_taken) { return same_view(T_taken, T); });
+}
+
 }  // namespace fvx::nbv

@@ -391,7 +391,7 @@ std::vector<std::size_t> Search::score(const viewpoints::FovScorer& scorer, cons
 /// Screened ranks (Search::rank): besides config.top, this many more views (at most) are
 /// scored with the full fan, so that a view the coarse fan placed just below the top can
 /// still take its place.
-constexpr std::size_t kRescoredBeyondTop = 10;
+constexpr std::size_t kRescoredBeyondTop = Config::kRescoredBeyondTop;
 
 View Search::describe(const Pose& pose, std::size_t i, const core::LargeVector<double>* util_m3,
                       const utility::Field* field, viewpoints::FovScorer::Workspace& ws,
@@ -429,8 +429,7 @@ void Search::name_seen(View& v, const std::vector<std::size_t>& seen) const {
 }
 
 bool Search::repeats_taken(const Eigen::Isometry3d& T_world_sensor) const {
-  return std::any_of(taken_views.begin(), taken_views.end(),
-                     [&](const Eigen::Isometry3d& T) { return same_view(T, T_world_sensor); });
+  return nbv::repeats_taken(taken_views, T_world_sensor);
 }
 
 std::vector<View> Search::rank(std::vector<Pose>& poses, const std::vector<std::size_t>& score, Pruning& pruning,

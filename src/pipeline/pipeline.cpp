@@ -18,7 +18,7 @@ void Config::tie_to_search() {
   filter.depth_min_m = nbv.sensor.depth_min_m;
   filter.depth_max_m = clear_beyond_range ? std::numeric_limits<double>::infinity() : nbv.sensor.depth_max_m;
   clusters.seed = nbv.seed;
-  if (nbv.rescored_poses == 0) nbv.rescored_poses = std::max(nbv.top, nbv.valid_poses) + 10;
+  if (nbv.rescored_poses == 0) nbv.rescored_poses = std::max(nbv.top, nbv.valid_poses) + nbv::Config::kRescoredBeyondTop;
 }
 
 std::vector<std::string> Config::validate() const {

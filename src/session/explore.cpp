@@ -41,9 +41,7 @@ Eigen::Isometry3d executed(const nbv::View& view, const std::optional<nbv::Reach
 std::optional<std::size_t> first_view_not_taken(const std::vector<nbv::View>& views,
                                                 const std::vector<Eigen::Isometry3d>& taken) {
   for (std::size_t i = 0; i < views.size(); ++i)
-    if (std::none_of(taken.begin(), taken.end(),
-                     [&](const Eigen::Isometry3d& T) { return nbv::same_view(T, views[i].T_world_sensor); }))
-      return i;
+    if (!nbv::repeats_taken(taken, views[i].T_world_sensor)) return i;
   return std::nullopt;
 }
 

@@ -80,6 +80,7 @@ struct Config {
   /// min(top, 10). The loops rescore N + 10 (Config::tie_to_search in pipeline): the views
   /// they take are then those of a search that described every valid pose (README, issue 15).
   int rescored_poses = 0;
+  static constexpr int kRescoredBeyondTop = 10;  ///< the "10" above: poses rescored beyond top
   int valid_poses = 50;               ///< N: the search stops after this many valid poses (paper: 50)
   int orientations_per_cell = 2;      ///< orientations sampled at each candidate cell
   double jitter_deg = 5.0;            ///< tilt of sampled axes around their target, degrees
@@ -237,6 +238,8 @@ struct Result {
 /// loops' searches pass over poses this close to a view already taken: it revealed what it
 /// could.
 bool same_view(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+/// T is the same view (same_view) as one of `taken`.
+bool repeats_taken(const std::vector<Eigen::Isometry3d>& taken, const Eigen::Isometry3d& T);
 
 namespace detail {
 struct Search;
