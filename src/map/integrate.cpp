@@ -64,9 +64,10 @@ void update_tree(Tree& tree, const Bitmap& free_cells, const std::vector<RayEnd>
     // As OctoMap: the endpoint is marked even when the origin is outside the key space.
     if (r.endpoint_hit && r.in_map && tree.coordToKeyChecked(r.end, key)) occupied_cells.insert(key);
 
+  Tree::UpdatePath last;  // one pass: nothing else changes the tree until it ends
   auto update = [&](const octomap::OcTreeKey& k, bool hit) {
     float log_odds_before = 0.0f;
-    const auto [node_before, node_after] = tree.update_cell(k, hit, log_odds_before);
+    const auto [node_before, node_after] = tree.update_cell(k, hit, log_odds_before, last);
     const VoxelState before = node_before ? state_of_log_odds(tree, log_odds_before) : VoxelState::Unknown;
     const VoxelState after = state_of(tree, node_after);
     if (before != after) result.changes.push_back({to_voxel_key(k), before, after});

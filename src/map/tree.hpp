@@ -2,6 +2,8 @@
 // Private to the map stage: the OctoMap tree behind OccupancyMap.
 #include <octomap/OcTree.h>
 
+#include <algorithm>
+
 #include "fvx/map/occupancy_map.hpp"
 
 namespace fvx::map {
@@ -21,16 +23,29 @@ class Tree : public octomap::OcTree {
   /// either, so the update stops there. That needs every inner node to hold the max of its
   /// children before the update, which OctoMap's own updates keep; a loaded tree is checked
   /// (check_inner_nodes), and one that fails takes OctoMap's recursion instead.
+  ///
+  /// `last` is the path of the previous update_cell of the same pass: the descent starts below
+  /// the deepest node the two keys share (free cells come in key order, so most share all but
+  /// the last level or two; descending from the root was three quarters of update_cell's time
+  /// on a real scan). Only update_cell may change the tree while one `UpdatePath` is in use.
+  struct UpdatePath {
+    octomap::OcTreeNode* node[17];
+    octomap::OcTreeKey key;
+    int valid = -1;  ///< node[0 … valid] are the nodes of key's path (−1: none yet)
+  };
   std::pair<const octomap::OcTreeNode*, const octomap::OcTreeNode*> update_cell(
-      const octomap::OcTreeKey& key, bool hit, float& log_odds_before) {
+      const octomap::OcTreeKey& key, bool hit, float& log_odds_before, UpdatePath& last) {
     const float update = hit ? prob_hit_log : prob_miss_log;
-    octomap::OcTreeNode* path[17];
+    octomap::OcTreeNode** path = last.node;
     bool created[17] = {};
     unsigned found = 0;  // the depth where search() stops
     octomap::OcTreeNode* leaf = nullptr;  // search()'s answer
     if (root) {
+      const unsigned from = shared_depth(key, last);
+      last.key = key;
       path[0] = root;
-      found = descend(key, path, 0);
+      found = descend(key, path, from);
+      last.valid = int(found);
       leaf = found_node(path, found);
     }
     if (leaf) log_odds_before = leaf->getLogOdds();
@@ -42,8 +57,12 @@ class Tree : public octomap::OcTree {
       ++tree_size;
       path[0] = root;
       created[0] = true;
+      last.key = key;
     }
-    if (!inner_max_) return {leaf, updateNodeRecurs(root, created[0], key, 0, update, false)};
+    if (!inner_max_) {
+      last.valid = -1;  // OctoMap's recursion may prune anywhere on the way
+      return {leaf, updateNodeRecurs(root, created[0], key, 0, update, false)};
+    }
     for (unsigned d = found; d < tree_depth; ++d) {  // updateNodeRecurs's way down from there
       const unsigned pos = octomap::computeChildIdx(key, int(tree_depth - 1 - d));
       if (!nodeChildExists(path[d], pos)) {
@@ -57,7 +76,19 @@ class Tree : public octomap::OcTree {
       path[d + 1] = getNodeChild(path[d], pos);
     }
     updateNodeLogOdds(path[tree_depth], update);
-    return {leaf, update_ancestors(path, created)};
+    return {leaf, update_ancestors(path, created, last.valid)};
+  }
+
+  /// How deep `last`'s path is also `key`'s: the node at depth d follows bits
+  /// depth − 1 … depth − d of each coordinate, so the paths share every node above the
+  /// highest bit in which the keys differ (as StateReader).
+  unsigned shared_depth(const octomap::OcTreeKey& key, const UpdatePath& last) const {
+    if (last.valid < 0) return 0;
+    const unsigned diff = unsigned(key[0] ^ last.key[0]) | unsigned(key[1] ^ last.key[1]) |
+                          unsigned(key[2] ^ last.key[2]);
+    if (diff == 0) return unsigned(last.valid);
+    const int highest = 31 - __builtin_clz(diff);
+    return unsigned(std::max(0, std::min(int(tree_depth) - 1 - highest, last.valid)));
   }
 
   /// OcTreeBaseImpl::search's descent for `key` from path[from] (the node at depth `from`):
@@ -102,13 +133,16 @@ class Tree : public octomap::OcTree {
 
  private:
   /// update_cell's way up from the updated leaf path[tree_depth]: returns the node that holds
-  /// the cell afterwards (the highest node pruned into one leaf, or the leaf).
-  octomap::OcTreeNode* update_ancestors(octomap::OcTreeNode* const* path, const bool* created) {
+  /// the cell afterwards (the highest node pruned into one leaf, or the leaf). `valid`: how
+  /// deep the path's nodes still exist (a pruned node's children are deleted).
+  octomap::OcTreeNode* update_ancestors(octomap::OcTreeNode* const* path, const bool* created, int& valid) {
     octomap::OcTreeNode* result = path[tree_depth];
+    valid = int(tree_depth);
     for (int d = int(tree_depth) - 1; d >= 0; --d) {
       octomap::OcTreeNode* node = path[d];
       if (pruneNode(node)) {
         result = node;
+        valid = d;
         continue;
       }
       const float before = node->getLogOdds();

@@ -128,6 +128,31 @@ TEST(Integrate, ALoadedTreeIsUpdatedAsOctoMapUpdatesIt) {
   }
 }
 
+// update_cell starts each descent from the path of the cell before it; pruning deletes nodes
+// of that path. The same scan again and again clamps the free cells, which prunes them into
+// coarser leaves within a pass, and scans from other origins then expand those leaves: the
+// tree still equals OctoMap's, byte for byte, and pruned leaves exist in it.
+TEST(Integrate, ScansThatPruneAndExpandTheTreeGiveOctoMapsTree) {
+  const test::TempDir dir;
+  std::mt19937 rng(5);
+  OccupancyMap map(0.05);
+  octomap::OcTree reference(0.05);
+  const Eigen::Vector3f first(0.0f, 0.0f, 0.5f);
+  const auto same = random_scan(rng, first, 4000);
+  for (int s = 0; s < 14; ++s) {
+    const Eigen::Vector3f origin = s < 10 ? first : Eigen::Vector3f(0.35f * float(s - 9), -0.1f, 0.4f);
+    const auto points = s < 10 ? same : random_scan(rng, origin, 4000);
+    map.integrate(points, origin);
+    reference.insertPointCloud(to_octomap(points), octomap::point3d(origin.x(), origin.y(), origin.z()));
+  }
+  std::size_t pruned_leaves = 0;
+  for (auto it = reference.begin_leafs(); it != reference.end_leafs(); ++it) pruned_leaves += it.getDepth() < 16;
+  EXPECT_GT(pruned_leaves, 100u);
+  map.save(dir / "fvx.ot");
+  ASSERT_TRUE(reference.write(dir / "octomap.ot"));
+  EXPECT_EQ(file_bytes(dir / "fvx.ot"), file_bytes(dir / "octomap.ot"));
+}
+
 // What update_cell's early stop relies on, checked on trees OctoMap itself updated.
 TEST(Integrate, TheInnerNodeCheckTellsUpdatedTreesFromStaleOnes) {
   std::mt19937 rng(3);
