@@ -230,7 +230,7 @@ int run_explore(const Args& args) {
     std::cerr << "fvx explore: warning: from this base no pose of the arm sees the target (ground truth: "
               << *score.observable_target_cells() << " of its cells measurable); move --base\n";
   std::cerr << "fvx explore: " << result.end << "; session in " << dir.string() << "\n";
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

@@ -185,7 +185,7 @@ int run_integrate(const Args& args) {
   report["results"] = {{"output", o.output_path}, {"scans", scans_json}, {"map", map_json(pipeline.map().stats())}};
   report["warnings"] = warnings;
   write_report(report, o.report_path);
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

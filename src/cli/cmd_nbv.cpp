@@ -135,7 +135,7 @@ int run_nbv(const Args& args) {
   if (!r.reason.empty()) warnings.push_back(r.reason);
   report["warnings"] = warnings;
   write_report(report, args.has("output") ? args.get("output") : "");
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

@@ -282,7 +282,7 @@ int run_replay(const Args& args) {
   if (!failure.empty()) throw Error("fvx replay: " + failure + (shown.empty() ? "; nothing was written" : "; the " +
                                     std::to_string(shown.size()) + " views before it are in " + dir.string()));
   std::cerr << "fvx replay: " << rows.size() << " views; maps, reports, volumes.png and views.png in " << dir.string() << "\n";
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

@@ -142,7 +142,7 @@ int run_simulate(const Args& args) {
   }
   report["warnings"] = warnings;
   write_report(report, args.has("report") ? args.get("report") : "");
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

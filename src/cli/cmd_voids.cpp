@@ -66,7 +66,7 @@ int run_voids(const Args& args) {
   if (args.has("timing")) report["results"]["timing_s"] = {{"load", load_s}, {"analysis", analysis_s}};
   report["warnings"] = a.warnings;
   write_report(report, args.has("output") ? args.get("output") : "");
-  return 0;
+  return core::end_process(0);
 }
 
 }  // namespace fvx::cli

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fvx/core/json.hpp"
+#include "fvx/core/memory.hpp"
 #include "fvx/report/envelope.hpp"
 
 namespace fvx::cli {

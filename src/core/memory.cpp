@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 
 #include "fvx/core/error.hpp"
 
@@ -71,6 +72,17 @@ std::size_t heap_reserve_bytes() {
 }
 
 }  // namespace
+
+int end_process(int status) {
+#ifndef FVX_SANITIZED_ALLOCATOR
+  std::cout.flush();
+  std::cerr.flush();
+  std::clog.flush();
+  std::fflush(nullptr);  // every C stream
+  std::_Exit(status);
+#endif
+  return status;
+}
 
 bool huge_page_heap_applies() {
 #ifdef FVX_SANITIZED_ALLOCATOR

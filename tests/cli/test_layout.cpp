@@ -68,8 +68,9 @@ TEST(Layout, TheCommandLineIsThin) {
   EXPECT_GT(total, 500u) << "src/cli was not found";
   // 1800 for eight commands; batch (a ninth, plans and their status) brought 1 877, its
   // sweep action (the options of a planner sweep; plan and merge in src/batch) 1 907, the
-  // progress line of fvx voids (the count comes from voids::ClusterConfig) 1 926.
-  EXPECT_LT(total, 1935u) << "src/cli holds library work again";
+  // progress line of fvx voids (the count comes from voids::ClusterConfig) 1 926, the end of
+  // a command without freeing what it built (core::end_process, its include) 1 935.
+  EXPECT_LT(total, 1940u) << "src/cli holds library work again";
 }
 
 TEST(Layout, NoFunctionIsLongerThanAScreen) {

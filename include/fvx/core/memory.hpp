@@ -36,4 +36,12 @@ void use_huge_page_heap();
 /// allocator, strict overcommit or FVX_DEFAULT_HEAP.
 bool huge_page_heap_applies();
 
+/// Ends the process with `status` once a command's outputs are written and closed, without
+/// freeing what it built: the kernel takes the address space back at once, where freeing an
+/// octree node by node took 0.6 s of a 5 s `fvx integrate` (README, "Ending a command").
+/// Flushes every stream first. Under the sanitizers it returns `status` instead, so that
+/// their leak checks still see every block freed. For a command's last line only:
+/// `return core::end_process(0);`.
+int end_process(int status);
+
 }  // namespace fvx::core
