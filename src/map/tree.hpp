@@ -41,13 +41,12 @@ class Tree : public octomap::OcTree {
     unsigned found = 0;  // the depth where search() stops
     octomap::OcTreeNode* leaf = nullptr;  // search()'s answer
     if (root) {
-      const unsigned from = shared_depth(key, last);
-      last.key = key;
       path[0] = root;
-      found = descend(key, path, from);
+      found = descend(key, path, last.valid < 0 ? 0u : shared_depth(key, last.key, unsigned(last.valid)));
       last.valid = int(found);
       leaf = found_node(path, found);
     }
+    last.key = key;
     if (leaf) log_odds_before = leaf->getLogOdds();
     if (leaf && ((update >= 0 && leaf->getLogOdds() >= clamping_thres_max) ||
                  (update <= 0 && leaf->getLogOdds() <= clamping_thres_min)))
@@ -57,7 +56,6 @@ class Tree : public octomap::OcTree {
       ++tree_size;
       path[0] = root;
       created[0] = true;
-      last.key = key;
     }
     if (!inner_max_) {
       last.valid = -1;  // OctoMap's recursion may prune anywhere on the way
@@ -79,16 +77,14 @@ class Tree : public octomap::OcTree {
     return {leaf, update_ancestors(path, created, last.valid)};
   }
 
-  /// How deep `last`'s path is also `key`'s: the node at depth d follows bits
-  /// depth − 1 … depth − d of each coordinate, so the paths share every node above the
-  /// highest bit in which the keys differ (as StateReader).
-  unsigned shared_depth(const octomap::OcTreeKey& key, const UpdatePath& last) const {
-    if (last.valid < 0) return 0;
-    const unsigned diff = unsigned(key[0] ^ last.key[0]) | unsigned(key[1] ^ last.key[1]) |
-                          unsigned(key[2] ^ last.key[2]);
-    if (diff == 0) return unsigned(last.valid);
-    const int highest = 31 - __builtin_clz(diff);
-    return unsigned(std::max(0, std::min(int(tree_depth) - 1 - highest, last.valid)));
+  /// How deep the path of `before` (known down to depth `reached`) is also `key`'s: the node
+  /// at depth d follows bits depth − 1 … depth − d of each coordinate, so the paths share every
+  /// node above the highest bit in which the keys differ (update_cell, StateReader).
+  unsigned shared_depth(const octomap::OcTreeKey& key, const octomap::OcTreeKey& before, unsigned reached) const {
+    const unsigned diff = unsigned(key[0] ^ before[0]) | unsigned(key[1] ^ before[1]) | unsigned(key[2] ^ before[2]);
+    if (diff == 0) return reached;
+    const unsigned highest = 31u - unsigned(__builtin_clz(diff));
+    return std::min(tree_depth - 1 - highest, reached);
   }
 
   /// OcTreeBaseImpl::search's descent for `key` from path[from] (the node at depth `from`):
