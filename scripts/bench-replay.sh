@@ -3,7 +3,10 @@
 # as a user runs it on recorded Kinect data, free-flying (--no-capmap), registration on (the
 # default for --scans): wall time, frames per second, seconds per view and peak memory (RSS).
 #   - the 211 Redwood living-room frames at 2.5 cm (redwood-livingroom1-micro);
-#   - the five slambook frames at 2.5 cm, depth < 7 m (slambook-joinmap-5kf).
+#   - the five slambook frames at 2.5 cm, depth < 7 m (slambook-joinmap-5kf; slambook's own
+#     joinMap cut-off);
+#   - the same frames at the sensor's default range, depth < 4 m (Kinect v1, what a user who
+#     gives only the intrinsics gets).
 # A last row per sequence replays it without any search (--search-every 0): the floor that the
 # steps before the search (registration, integration, frontiers and voids, writing) set.
 # Data from FVX_REAL_DATA (default ../shared/data). FVX_BASELINE=/path/to/another/fvx runs that
@@ -25,14 +28,15 @@ slambook="$data/slambook-joinmap-5kf"
 declare -A args
 args[redwood]="--scans $redwood/depth/*.png --trajectory $redwood/trajectory_open3d_estimated.log --fx 525 --fy 525 --cx 319.5 --cy 239.5"
 args[slambook]="--scans $slambook/depth/*.pgm --trajectory $slambook/pose.txt --fx 518 --fy 519 --cx 325.5 --cy 253.5 --depth-scale 1000 --depth-max 7"
+args[slambook-4m]="${args[slambook]% --depth-max 7}"
 binaries=("$fvx")
 [ -n "${FVX_BASELINE:-}" ] && binaries=("$FVX_BASELINE" "$fvx")
 
 printf '| sequence | binary | search | frames | wall s | frames/s | s per view | peak MiB | same maps as the first |\n'
 printf '|---|---|---|---|---|---|---|---|---|\n'
-for name in redwood slambook; do
+for name in redwood slambook slambook-4m; do
   dir="$redwood"
-  [ "$name" = slambook ] && dir="$slambook"
+  [ "$name" != redwood ] && dir="$slambook"
   [ -d "$dir" ] || { echo "bench-replay: $dir not found; set FVX_REAL_DATA" >&2; continue; }
   n=0
   for run in "${binaries[@]}" "$fvx none"; do

@@ -25,7 +25,7 @@
 #    5 cm, searched whole and in a 4 m corner given as --bounds (scripts/bench-large-map.sh;
 #    FVX_BASELINE=/path/to/fvx adds another binary in the same run);
 #  - replay with a search after every view: the whole fvx replay on the 211 Redwood frames and
-#    the five slambook frames at 2.5 cm, frames/s and peak memory, and the same without any
+#    the five slambook frames at 2.5 cm (7 m and the default 4 m), frames/s and peak memory, and the same without any
 #    search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx adds another binary in the
 #    same run; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
