@@ -27,8 +27,9 @@ redwood="$data/redwood-livingroom1-micro"
 slambook="$data/slambook-joinmap-5kf"
 declare -A args
 args[redwood]="--scans $redwood/depth/*.png --trajectory $redwood/trajectory_open3d_estimated.log --fx 525 --fy 525 --cx 319.5 --cy 239.5"
-args[slambook]="--scans $slambook/depth/*.pgm --trajectory $slambook/pose.txt --fx 518 --fy 519 --cx 325.5 --cy 253.5 --depth-scale 1000 --depth-max 7"
-args[slambook-4m]="${args[slambook]% --depth-max 7}"
+slambook_args="--scans $slambook/depth/*.pgm --trajectory $slambook/pose.txt --fx 518 --fy 519 --cx 325.5 --cy 253.5 --depth-scale 1000"
+args[slambook]="$slambook_args --depth-max 7"
+args[slambook-4m]="$slambook_args"
 binaries=("$fvx")
 [ -n "${FVX_BASELINE:-}" ] && binaries=("$FVX_BASELINE" "$fvx")
 

@@ -25,9 +25,9 @@
 #    5 cm, searched whole and in a 4 m corner given as --bounds (scripts/bench-large-map.sh;
 #    FVX_BASELINE=/path/to/fvx adds another binary in the same run);
 #  - replay with a search after every view: the whole fvx replay on the 211 Redwood frames and
-#    the five slambook frames at 2.5 cm (7 m and the default 4 m), frames/s and peak memory, and the same without any
-#    search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx adds another binary in the
-#    same run; FVX_REAL_DATA);
+#    the five slambook frames at 2.5 cm (to 7 m and to the default 4 m), frames/s and peak
+#    memory, and the same without any search (scripts/bench-replay.sh; FVX_BASELINE=/path/to/fvx
+#    adds another binary in the same run; FVX_REAL_DATA);
 #  - capability maps: the youBot map at 5 cm, the FK-seeded build against the exhaustive
 #    IK loop on the same z-slab, lookups, file size (from FVX_REAL_DATA);
 #  - batch: the youBot map at 2.5 cm as 2, 8 and 64 shards (slabs and samples) through GNU
