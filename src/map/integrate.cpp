@@ -9,6 +9,7 @@
 
 #include "key_bitmap.hpp"
 #include "ray_keys.hpp"
+#include "ray_lanes.hpp"
 #include "tree.hpp"
 #include "fvx/core/threads.hpp"
 
@@ -21,19 +22,44 @@ struct RayEnd {
   bool in_map;        // the end has a key
 };
 
+/// Marks the cells of the rays `t`, `t + threads`, … of `ends` in `cells`: eight rays in step
+/// where the CPU can (ray_lanes.hpp; 4 096 started rays at a time, so the columns stay in
+/// the cache), else one after the other.
+void mark_rays(const Tree& tree, const octomap::point3d& origin, const std::vector<RayEnd>& ends, unsigned t,
+               unsigned threads, DenseKeyBitmap& cells) {
+  const auto index_of = [&](const octomap::OcTreeKey& k) { return std::int64_t(cells.index(k)); };
+  std::uint64_t* const words = cells.words();
+  const auto mark = [words](std::int64_t i) { words[std::uint64_t(i) >> 6] |= std::uint64_t(1) << (i & 63); };
+  if (!ray_lanes_available()) {
+    for (std::size_t i = t; i < ends.size(); i += threads)
+      if (ends[i].in_map) mark_ray_cells(tree, origin, ends[i].end, cells.strides(), index_of, mark);
+    return;
+  }
+  constexpr std::size_t kBatch = 4096;
+  MarkedRays batch;
+  for (std::size_t i = t; i < ends.size(); i += threads) {
+    MarkedRay ray;
+    bool empty = false;
+    if (!ends[i].in_map || !start_marked_ray(tree, origin, ends[i].end, cells.strides(), index_of, ray, empty) ||
+        empty)
+      continue;
+    mark(ray.index);
+    batch.push(ray);
+    if (batch.size() == kBatch) {
+      mark_rays_in_lanes(batch, words);
+      batch.clear();
+    }
+  }
+  mark_rays_in_lanes(batch, words);
+}
+
 /// Marks the cells of every traceable ray in a flat bitmap, on `threads` threads, each with
 /// its own bitmap; their union does not depend on the split, so results are deterministic.
 DenseKeyBitmap trace_free_cells(const Tree& tree, const octomap::point3d& origin,
                                 const std::vector<RayEnd>& ends, const std::array<int, 3>& key_min,
                                 const std::array<int, 3>& key_max, unsigned threads) {
   std::vector<DenseKeyBitmap> cells(threads, DenseKeyBitmap(key_min, key_max));
-  auto work = [&](unsigned t) {
-    DenseKeyBitmap& mine = cells[t];
-    const auto index_of = [&](const octomap::OcTreeKey& k) { return std::int64_t(mine.index(k)); };
-    const auto mark = [&](std::int64_t i) { mine.set(std::uint64_t(i)); };
-    for (std::size_t i = t; i < ends.size(); i += threads)
-      if (ends[i].in_map) mark_ray_cells(tree, origin, ends[i].end, mine.strides(), index_of, mark);
-  };
+  auto work = [&](unsigned t) { mark_rays(tree, origin, ends, t, threads, cells[t]); };
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);

@@ -47,6 +47,9 @@ class DenseKeyBitmap {
     for (std::size_t w = 0; w < words_.size(); ++w) words_[w] |= other.words_[w];
   }
 
+  /// The bits, 64 to a word (bit i in word i / 64, at i % 64), for walks that set them directly.
+  std::uint64_t* words() { return words_.data(); }
+
   /// Bit-index distance between neighbouring cells along x, y, z.
   const std::int64_t* strides() const { return strides_; }
 

@@ -3,9 +3,12 @@
 #include <octomap/OcTree.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 
 #include "../../../src/map/ray_keys.hpp"
+#include "../../../src/map/key_bitmap.hpp"
+#include "../../../src/map/ray_lanes.hpp"
 
 namespace fvx::map {
 namespace {
@@ -89,6 +92,61 @@ TEST(RayKeys, EqualToOctoMapOnAxisAlignedAndBorderRays) {
   expect_same_keys(tree, {0, 0, 0}, {1, 1, 1});  // through cell corners
   expect_same_keys(tree, {0.01f, 0.01f, 0.01f}, {0.02f, 0.02f, 0.02f});  // same cell
   expect_same_keys(tree, {0, 0, 0}, {5000.0f, 0, 0});                   // end outside the key space
+}
+
+
+// The eight-lane walk (integrate's hot loop where the CPU has AVX-512) sets exactly the bits
+// the one-ray walk marks: 30 000 rays from one origin (as a scan's) and 10 000 from anywhere,
+// in batches whose sizes are not multiples of eight, including axis-parallel rays and rays
+// through cell corners, whose t's tie.
+TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
+  if (!ray_lanes_available()) GTEST_SKIP() << "this CPU has no AVX-512 (F, DQ): integrate walks one ray at a time";
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-2.0f, 2.0f);
+  const octomap::OcTree tree(0.05);
+  const std::array<int, 3> lo{32768 - 100, 32768 - 100, 32768 - 100}, hi{32768 + 100, 32768 + 100, 32768 + 100};
+  DenseKeyBitmap lanes(lo, hi), one(lo, hi);
+  const auto index_of = [&](const octomap::OcTreeKey& k) { return std::int64_t(one.index(k)); };
+  std::uint64_t* const one_words = one.words();
+  const auto mark = [&](std::int64_t i) { one_words[std::uint64_t(i) >> 6] |= std::uint64_t(1) << (i & 63); };
+  MarkedRays batch;
+  std::size_t rays = 0;
+  auto add = [&](const octomap::point3d& a, const octomap::point3d& b) {
+    MarkedRay ray;
+    bool empty = false;
+    if (!start_marked_ray(tree, a, b, one.strides(), index_of, ray, empty) || empty) return;
+    walk_marked_ray(ray, mark);
+    batch.push(ray);
+    ++rays;
+    if (batch.size() == 997) {
+      mark_rays_in_lanes(batch, lanes.words());
+      batch.clear();
+    }
+  };
+  const octomap::point3d origin(0.013f, -0.021f, 0.037f);
+  for (int i = 0; i < 30000; ++i) add(origin, {coord(rng), coord(rng), coord(rng)});
+  for (int i = 0; i < 10000; ++i) add({coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), coord(rng)});
+  for (float f : {-1.5f, -0.35f, 0.35f, 1.5f}) {
+    add({0.01f, 0.01f, 0.01f}, {f, 0.01f, 0.01f});
+    add({0.01f, 0.01f, 0.01f}, {0.01f, f, 0.01f});
+    add({0.01f, 0.01f, 0.01f}, {0.01f, 0.01f, f});
+    add({0, 0, 0}, {f, f, f});
+    add({0.35f, 0.35f, 0.35f}, {-f, 3 * f, 0.0f});
+    // Two axes tie at every crossing (equal offsets and slopes), the third does not.
+    add({0.01f, 0.01f, 0.013f}, {0.01f + f, 0.01f + f, 0.013f + 0.3f * f});
+    add({0.01f, 0.013f, 0.01f}, {0.01f + f, 0.013f - 0.3f * f, 0.01f + f});
+    add({0.013f, 0.01f, 0.01f}, {0.013f + 0.3f * f, 0.01f - f, 0.01f - f});
+  }
+  mark_rays_in_lanes(batch, lanes.words());
+  ASSERT_GT(rays, 39000u);
+  std::size_t bits = 0, differ = 0;
+  one.for_each([&](const octomap::OcTreeKey& k) {
+    ++bits;
+    differ += !lanes.contains(k);
+  });
+  lanes.for_each([&](const octomap::OcTreeKey& k) { differ += !one.contains(k); });
+  EXPECT_GT(bits, 100000u);
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace
