@@ -22,19 +22,21 @@ struct RayEnd {
   bool in_map;        // the end has a key
 };
 
-/// Marks the cells of the rays `t`, `t + threads`, … of `ends` in `cells`: eight rays in step
-/// where the CPU can (ray_lanes.hpp; 4 096 started rays at a time, so the columns stay in
-/// the cache), else one after the other.
+/// Marks the cells of the rays `t`, `t + threads`, … of `ends` in `cells`: eight or four
+/// rays in step where the CPU can (ray_lanes.hpp; 4 096 started rays at a time, so the
+/// columns stay in the cache), else one after the other.
 void mark_rays(const Tree& tree, const octomap::point3d& origin, const std::vector<RayEnd>& ends, unsigned t,
                unsigned threads, DenseKeyBitmap& cells) {
   const auto index_of = [&](const octomap::OcTreeKey& k) { return std::int64_t(cells.index(k)); };
   std::uint64_t* const words = cells.words();
   const auto mark = [words](std::int64_t i) { words[std::uint64_t(i) >> 6] |= std::uint64_t(1) << (i & 63); };
-  if (!ray_lanes_available()) {
+  const int lanes = ray_lanes();
+  if (lanes == 1) {
     for (std::size_t i = t; i < ends.size(); i += threads)
       if (ends[i].in_map) mark_ray_cells(tree, origin, ends[i].end, cells.strides(), index_of, mark);
     return;
   }
+  const auto walk = lanes == 8 ? mark_rays_in_lanes : mark_rays_in_four_lanes;
   constexpr std::size_t kBatch = 4096;
   MarkedRays batch;
   for (std::size_t i = t; i < ends.size(); i += threads) {
@@ -46,11 +48,11 @@ void mark_rays(const Tree& tree, const octomap::point3d& origin, const std::vect
     mark(ray.index);
     batch.push(ray);
     if (batch.size() == kBatch) {
-      mark_rays_in_lanes(batch, words);
+      walk(batch, words);
       batch.clear();
     }
   }
-  mark_rays_in_lanes(batch, words);
+  walk(batch, words);
 }
 
 /// Marks the cells of every traceable ray in a flat bitmap, on `threads` threads, each with

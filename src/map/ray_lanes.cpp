@@ -3,12 +3,28 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace fvx::map {
 
 bool ray_lanes_available() {
   static const bool available = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
   return available;
+}
+
+bool four_ray_lanes_available() {
+  static const bool available = __builtin_cpu_supports("avx2");
+  return available;
+}
+
+int ray_lanes() {
+  static const int lanes = [] {
+    const int widest = ray_lanes_available() ? 8 : four_ray_lanes_available() ? 4 : 1;
+    const char* asked = std::getenv("FVX_RAY_LANES");
+    const int wanted = asked ? std::atoi(asked) : widest;
+    return wanted >= 8 ? widest : wanted >= 4 ? std::min(widest, 4) : 1;
+  }();
+  return lanes;
 }
 
 void MarkedRays::push(const MarkedRay& ray) {
@@ -95,6 +111,67 @@ __attribute__((target("avx512f,avx512dq"))) void mark_rays_in_lanes(const Marked
     _mm512_store_si512(word_of_lane, _mm512_maskz_srli_epi64(visit, index, 6));
     _mm512_store_si512(bit_of_lane, _mm512_maskz_sllv_epi64(visit, one, _mm512_and_si512(index, low6)));
     for (int k = 0; k < 8; ++k) words[word_of_lane[k]] |= bit_of_lane[k];
+    active = visit;
+  }
+}
+
+
+// Four lanes of AVX2. A lane's state lives in the vectors; refilling a lane stores them,
+// writes the next ray into the lane's place and loads them again (a ray walks ~100 cells,
+// so that happens every few dozen steps). The axis: walk_marked_ray's rule by compares and
+// blends; the chosen axis's t gets its step and the others +0.0, which leaves a positive t
+// as it is, bit for bit.
+__attribute__((target("avx2"))) void mark_rays_in_four_lanes(const MarkedRays& r, std::uint64_t* words) {
+  const std::size_t n = r.size();
+  std::size_t next = 0;
+  alignas(32) double t[3][4] = {}, d[3][4] = {}, length[4] = {};
+  alignas(32) std::int64_t index[4] = {}, index_end[4] = {}, step[3][4] = {};
+  __m256d t0 = _mm256_setzero_pd(), t1 = t0, t2 = t0, d0 = t0, d1 = t0, d2 = t0, len = t0;
+  __m256i idx = _mm256_setzero_si256(), end = idx, s0 = idx, s1 = idx, s2 = idx;
+  unsigned active = 0;
+  while (true) {
+    if (active != 0xF && next < n) {
+      _mm256_store_pd(t[0], t0), _mm256_store_pd(t[1], t1), _mm256_store_pd(t[2], t2);
+      _mm256_store_si256(reinterpret_cast<__m256i*>(index), idx);
+      for (unsigned k = 0; k < 4 && next < n; ++k) {
+        if (active >> k & 1) continue;
+        t[0][k] = r.t0_[next], t[1][k] = r.t1_[next], t[2][k] = r.t2_[next];
+        d[0][k] = r.d0_[next], d[1][k] = r.d1_[next], d[2][k] = r.d2_[next];
+        length[k] = r.length_[next], index[k] = r.index_[next], index_end[k] = r.index_end_[next];
+        step[0][k] = r.step0_[next], step[1][k] = r.step1_[next], step[2][k] = r.step2_[next];
+        active |= 1u << k;
+        ++next;
+      }
+      t0 = _mm256_load_pd(t[0]), t1 = _mm256_load_pd(t[1]), t2 = _mm256_load_pd(t[2]);
+      d0 = _mm256_load_pd(d[0]), d1 = _mm256_load_pd(d[1]), d2 = _mm256_load_pd(d[2]);
+      len = _mm256_load_pd(length);
+      idx = _mm256_load_si256(reinterpret_cast<const __m256i*>(index));
+      end = _mm256_load_si256(reinterpret_cast<const __m256i*>(index_end));
+      s0 = _mm256_load_si256(reinterpret_cast<const __m256i*>(step[0]));
+      s1 = _mm256_load_si256(reinterpret_cast<const __m256i*>(step[1]));
+      s2 = _mm256_load_si256(reinterpret_cast<const __m256i*>(step[2]));
+    }
+    if (!active) return;
+    const __m256d first = _mm256_cmp_pd(t0, t1, _CMP_LT_OQ);
+    const __m256d below = _mm256_cmp_pd(_mm256_blendv_pd(t1, t0, first), t2, _CMP_LT_OQ);
+    const __m256d on0 = _mm256_and_pd(first, below), on1 = _mm256_andnot_pd(first, below);
+    const __m256d on2 = _mm256_andnot_pd(below, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
+    const __m256d chosen_step = _mm256_blendv_pd(
+        _mm256_blendv_pd(_mm256_castsi256_pd(s2), _mm256_castsi256_pd(s1), on1), _mm256_castsi256_pd(s0), on0);
+    idx = _mm256_add_epi64(idx, _mm256_castpd_si256(chosen_step));
+    t0 = _mm256_add_pd(t0, _mm256_and_pd(d0, on0));
+    t1 = _mm256_add_pd(t1, _mm256_and_pd(d1, on1));
+    t2 = _mm256_add_pd(t2, _mm256_and_pd(d2, on2));
+    const unsigned at_end = unsigned(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(idx, end))));
+    const unsigned past =
+        unsigned(_mm256_movemask_pd(_mm256_cmp_pd(_mm256_min_pd(_mm256_min_pd(t0, t1), t2), len, _CMP_GT_OQ)));
+    const unsigned visit = active & ~at_end & ~past;
+    // Four ORs, a zero bit into word 0 for the lanes that mark nothing (as eight lanes do).
+    _mm256_store_si256(reinterpret_cast<__m256i*>(index), idx);
+    for (unsigned k = 0; k < 4; ++k) {
+      const std::uint64_t on = visit >> k & 1, i = std::uint64_t(index[k]);
+      words[(i >> 6) & (0 - on)] |= on << (i & 63);
+    }
     active = visit;
   }
 }

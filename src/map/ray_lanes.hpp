@@ -14,6 +14,12 @@ namespace fvx::map {
 
 /// Whether this CPU runs mark_rays_in_lanes (AVX-512 F and DQ).
 bool ray_lanes_available();
+/// Whether it runs mark_rays_in_four_lanes (AVX2).
+bool four_ray_lanes_available();
+/// The walk integrate() uses: 8 (mark_rays_in_lanes), 4 (mark_rays_in_four_lanes) or 1 (one
+/// ray at a time), the widest this CPU runs; the environment variable FVX_RAY_LANES (1, 4 or
+/// 8) may ask for a narrower one, to compare them in a benchmark. Read once.
+int ray_lanes();
 
 /// Started rays (start_marked_ray), a column per field, as the lanes load them.
 class MarkedRays {
@@ -24,6 +30,7 @@ class MarkedRays {
 
  private:
   friend void mark_rays_in_lanes(const MarkedRays& rays, std::uint64_t* words);
+  friend void mark_rays_in_four_lanes(const MarkedRays& rays, std::uint64_t* words);
   std::vector<double> t0_, t1_, t2_, d0_, d1_, d2_, length_;
   std::vector<std::int64_t> index_, index_end_, step0_, step1_, step2_;
 };
@@ -32,5 +39,9 @@ class MarkedRays {
 /// marks for each of `rays` (not their first cells, which the caller marks). Only where
 /// ray_lanes_available().
 void mark_rays_in_lanes(const MarkedRays& rays, std::uint64_t* words);
+
+/// The same, four rays in step (AVX2, for CPUs without AVX-512: no masked loads, so a lane
+/// whose ray ended is refilled through memory). Only where four_ray_lanes_available().
+void mark_rays_in_four_lanes(const MarkedRays& rays, std::uint64_t* words);
 
 }  // namespace fvx::map

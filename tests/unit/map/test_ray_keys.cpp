@@ -95,12 +95,12 @@ TEST(RayKeys, EqualToOctoMapOnAxisAlignedAndBorderRays) {
 }
 
 
-// The eight-lane walk (integrate's hot loop where the CPU has AVX-512) sets exactly the bits
+// The eight-lane walk (integrate's hot loop where the CPU has AVX-512) and the four-lane one
+// (AVX2) set exactly the bits
 // the one-ray walk marks: 30 000 rays from one origin (as a scan's) and 10 000 from anywhere,
 // in batches whose sizes are not multiples of eight, including axis-parallel rays and rays
 // through cell corners, whose t's tie.
-TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
-  if (!ray_lanes_available()) GTEST_SKIP() << "this CPU has no AVX-512 (F, DQ): integrate walks one ray at a time";
+void expect_lanes_set_the_one_ray_walks_bits(void (*walk_in_lanes)(const MarkedRays&, std::uint64_t*)) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> coord(-2.0f, 2.0f);
   const octomap::OcTree tree(0.05);
@@ -119,7 +119,7 @@ TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
     batch.push(ray);
     ++rays;
     if (batch.size() == 997) {
-      mark_rays_in_lanes(batch, lanes.words());
+      walk_in_lanes(batch, lanes.words());
       batch.clear();
     }
   };
@@ -137,7 +137,7 @@ TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
     add({0.01f, 0.013f, 0.01f}, {0.01f + f, 0.013f - 0.3f * f, 0.01f + f});
     add({0.013f, 0.01f, 0.01f}, {0.013f + 0.3f * f, 0.01f - f, 0.01f - f});
   }
-  mark_rays_in_lanes(batch, lanes.words());
+  walk_in_lanes(batch, lanes.words());
   ASSERT_GT(rays, 39000u);
   std::size_t bits = 0, differ = 0;
   one.for_each([&](const octomap::OcTreeKey& k) {
@@ -147,6 +147,16 @@ TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
   lanes.for_each([&](const octomap::OcTreeKey& k) { differ += !one.contains(k); });
   EXPECT_GT(bits, 100000u);
   EXPECT_EQ(differ, 0u);
+}
+
+TEST(RayKeys, TheEightLaneWalkSetsTheOneRayWalksBits) {
+  if (!ray_lanes_available()) GTEST_SKIP() << "this CPU has no AVX-512 (F, DQ)";
+  expect_lanes_set_the_one_ray_walks_bits(mark_rays_in_lanes);
+}
+
+TEST(RayKeys, TheFourLaneWalkSetsTheOneRayWalksBits) {
+  if (!four_ray_lanes_available()) GTEST_SKIP() << "this CPU has no AVX2";
+  expect_lanes_set_the_one_ray_walks_bits(mark_rays_in_four_lanes);
 }
 
 }  // namespace
