@@ -115,7 +115,6 @@ __attribute__((target("avx512f,avx512dq"))) void mark_rays_in_lanes(const Marked
   }
 }
 
-
 // Four lanes of AVX2. A lane's state lives in the vectors; refilling a lane stores them,
 // writes the next ray into the lane's place and loads them again (a ray walks ~100 cells,
 // so that happens every few dozen steps). The axis: walk_marked_ray's rule by compares and

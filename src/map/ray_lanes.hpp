@@ -1,9 +1,10 @@
 #pragma once
-// Private to the map stage: the bitmap walk of ray_keys.hpp for eight rays in step (AVX-512),
-// where the CPU has it. One ray's walk spends most of its time on the branch that picks the
-// axis to step (it goes either way from step to step); eight lanes pick by masks instead.
-// The arithmetic is walk_marked_ray's (the same IEEE double additions and comparisons, no
-// fused operations), so the cells are the same; a test holds them to the one-ray walk.
+// Private to the map stage: the bitmap walk of ray_keys.hpp for eight rays in step (AVX-512)
+// or four (AVX2), where the CPU has them. One ray's walk spends most of its time on the branch
+// that picks the axis to step (it goes either way from step to step); the lanes pick by masks
+// instead. The arithmetic is walk_marked_ray's (the same IEEE double additions and
+// comparisons, no fused operations), so the cells are the same; a test holds both widths to
+// the one-ray walk.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,8 +18,9 @@ bool ray_lanes_available();
 /// Whether it runs mark_rays_in_four_lanes (AVX2).
 bool four_ray_lanes_available();
 /// The walk integrate() uses: 8 (mark_rays_in_lanes), 4 (mark_rays_in_four_lanes) or 1 (one
-/// ray at a time), the widest this CPU runs; the environment variable FVX_RAY_LANES (1, 4 or
-/// 8) may ask for a narrower one, to compare them in a benchmark. Read once.
+/// ray at a time), the widest this CPU runs; the environment variable FVX_RAY_LANES may ask
+/// for a narrower one (8 or more: the widest, 4–7: at most four, anything else: one), to
+/// compare them in a benchmark or test each. Read once.
 int ray_lanes();
 
 /// Started rays (start_marked_ray), a column per field, as the lanes load them.

@@ -94,12 +94,12 @@ TEST(RayKeys, EqualToOctoMapOnAxisAlignedAndBorderRays) {
   expect_same_keys(tree, {0, 0, 0}, {5000.0f, 0, 0});                   // end outside the key space
 }
 
-
 // The eight-lane walk (integrate's hot loop where the CPU has AVX-512) and the four-lane one
-// (AVX2) set exactly the bits
-// the one-ray walk marks: 30 000 rays from one origin (as a scan's) and 10 000 from anywhere,
+// (AVX2) set exactly the bits the one-ray walk marks: 30 000 rays from one origin (as a scan's) and 10 000 from anywhere,
 // in batches whose sizes are not multiples of eight, including axis-parallel rays and rays
-// through cell corners, whose t's tie.
+// through cell corners or along two axes at once, whose t's tie. A CPU without the
+// instructions cannot run a walk at all: its test skips, and the RayLanes ctest entries
+// (tests/CMakeLists.txt) run the OctoMap oracles with the walks it has.
 void expect_lanes_set_the_one_ray_walks_bits(void (*walk_in_lanes)(const MarkedRays&, std::uint64_t*)) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> coord(-2.0f, 2.0f);
